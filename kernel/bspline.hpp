@@ -1,0 +1,277 @@
+// kernel/bspline.hpp
+#pragma once
+#include <algorithm>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "kernel/bernstein.hpp"
+
+namespace qmotion::kernel {
+
+/// B-spline function with coefficients in any ring of kernel/coefficient.hpp, on a clamped
+/// knot vector (poles + degree + 1 entries, first and last value degree+1 times, interior
+/// multiplicities at most degree+1: degree+1 is a break, which derivatives can need). A value class: the factory validates the invariant.
+/// @see Piegl & Tiller, The NURBS Book, ch. 2-5; Ramshaw 1989 for blossoms
+template <typename Coef>
+class BSpline {
+ public:
+  using Scalar = coef_scalar_t<Coef>;
+
+  /// Readable problems with a (degree, knots, pole count) triple; empty when valid.
+  static std::vector<std::string> validate(int degree, const std::vector<Scalar>& knots, std::size_t poles) {
+    std::vector<std::string> issues;
+    if (degree < 0) {
+      issues.push_back("degree must be >= 0");
+      return issues;
+    }
+    const std::size_t p = static_cast<std::size_t>(degree);
+    if (poles < p + 1) issues.push_back("needs at least degree+1 = " + std::to_string(p + 1) + " control points, has " + std::to_string(poles));
+    if (knots.size() != poles + p + 1) {
+      issues.push_back("knot vector has " + std::to_string(knots.size()) + " entries, expected control points + degree + 1 = " +
+                       std::to_string(poles + p + 1));
+      return issues;
+    }
+    for (std::size_t i = 1; i < knots.size(); ++i)
+      if (knots[i] < knots[i - 1]) {
+        issues.push_back("knots decrease at index " + std::to_string(i));
+        return issues;
+      }
+    if (!issues.empty()) return issues;
+    for (std::size_t i = 1; i <= p; ++i)
+      if (knots[i] != knots[0] || knots[knots.size() - 1 - i] != knots.back()) {
+        issues.push_back("knot vector is not clamped (first and last knot must repeat degree+1 times)");
+        break;
+      }
+    if (!(knots.front() < knots.back())) issues.push_back("knot vector spans an empty interval");
+    else if (knots[p + 1] == knots[0] || knots[knots.size() - p - 2] == knots.back())
+      issues.push_back("end knots repeat more than degree+1 times");
+    std::size_t run = 1;
+    for (std::size_t i = p + 2; i + p + 1 < knots.size(); ++i) {
+      run = knots[i] == knots[i - 1] ? run + 1 : 1;
+      if (run > p + 1 && knots[i] != knots.back()) {
+        issues.push_back("interior knot at index " + std::to_string(i) + " has multiplicity above degree+1");
+        break;
+      }
+    }
+    return issues;
+  }
+
+  /// Validating factory; throws Errc::invalid_input naming the first problem.
+  static BSpline make(int degree, std::vector<Scalar> knots, std::vector<Coef> ctrl) {
+    const auto issues = validate(degree, knots, ctrl.size());
+    if (!issues.empty()) throw Error(Errc::invalid_input, "invalid B-spline: " + issues.front());
+    return BSpline(degree, std::move(knots), std::move(ctrl));
+  }
+
+  /// The Bezier polynomial p as a B-spline on the knot vector a^(n+1) b^(n+1).
+  static BSpline from_bezier(const Bernstein<Coef>& p) {
+    std::vector<Scalar> k(static_cast<std::size_t>(p.degree() + 1), p.a());
+    k.insert(k.end(), static_cast<std::size_t>(p.degree() + 1), p.b());
+    return BSpline(p.degree(), std::move(k), p.coeffs());
+  }
+
+  int degree() const { return p_; }
+  const std::vector<Scalar>& knots() const { return t_; }
+  const std::vector<Coef>& ctrl() const { return c_; }
+  const Scalar& a() const { return t_.front(); }
+  const Scalar& b() const { return t_.back(); }
+
+  /// Index j with knots[j] <= t < knots[j+1] (the last non-empty span for t >= b, the
+  /// first for t < a).
+  int find_span(const Scalar& t) const {
+    const int n = static_cast<int>(c_.size()) - 1;
+    if (!(t < t_[static_cast<std::size_t>(n + 1)])) {
+      int j = n;
+      while (j > p_ && !(t_[static_cast<std::size_t>(j)] < t_[static_cast<std::size_t>(j + 1)])) --j;
+      return j;
+    }
+    const auto it = std::upper_bound(t_.begin() + p_, t_.begin() + n + 1, t);
+    return std::max(p_, static_cast<int>(it - t_.begin()) - 1);
+  }
+
+  /// Distinct knot values a = x_0 < x_1 < ... < x_r = b.
+  std::vector<Scalar> breakpoints() const {
+    std::vector<Scalar> x;
+    for (const auto& v : t_)
+      if (x.empty() || x.back() != v) x.push_back(v);
+    return x;
+  }
+
+  /// Multiplicity of the value x in the knot vector (0 when absent).
+  int multiplicity(const Scalar& x) const {
+    return static_cast<int>(std::count(t_.begin(), t_.end(), x));
+  }
+
+ private:
+  BSpline(int degree, std::vector<Scalar> knots, std::vector<Coef> ctrl)
+      : p_(degree), t_(std::move(knots)), c_(std::move(ctrl)) {}
+  int p_;
+  std::vector<Scalar> t_;
+  std::vector<Coef> c_;
+};
+
+/// Blossom of the polynomial piece on knot span j at the degree arguments u (de Boor's
+/// triangle with one argument per level).
+template <typename Coef>
+Coef blossom(const BSpline<Coef>& s, int j, const std::vector<coef_scalar_t<Coef>>& u) {
+  using S = coef_scalar_t<Coef>;
+  const int p = s.degree();
+  QMOTION_EXPECTS(static_cast<int>(u.size()) == p, "blossom needs degree arguments");
+  const auto& T = s.knots();
+  std::vector<Coef> d(s.ctrl().begin() + (j - p), s.ctrl().begin() + (j + 1));
+  for (int r = 1; r <= p; ++r)
+    for (int i = p; i >= r; --i) {
+      const std::size_t idx = static_cast<std::size_t>(j - p + i);
+      const S alpha = S((u[static_cast<std::size_t>(r - 1)] - T[idx]) / (T[idx + static_cast<std::size_t>(p + 1 - r)] - T[idx]));
+      d[static_cast<std::size_t>(i)] = detail::lerp(d[static_cast<std::size_t>(i - 1)], d[static_cast<std::size_t>(i)], alpha);
+    }
+  return d[static_cast<std::size_t>(p)];
+}
+
+/// s(t) by de Boor's algorithm (exact for exact Scalar).
+template <typename Coef>
+Coef evaluate(const BSpline<Coef>& s, const coef_scalar_t<Coef>& t) {
+  return blossom(s, s.find_span(t), std::vector<coef_scalar_t<Coef>>(static_cast<std::size_t>(s.degree()), t));
+}
+
+/// Inserts the knot t (a < t < b) `times` times by Boehm's algorithm; the function is
+/// unchanged. Throws when the multiplicity would exceed the degree.
+template <typename Coef>
+BSpline<Coef> insert_knot(const BSpline<Coef>& s, const coef_scalar_t<Coef>& t, int times = 1) {
+  using S = coef_scalar_t<Coef>;
+  if (!(s.a() < t && t < s.b())) throw Error(Errc::invalid_input, "knot insertion outside the open parameter interval");
+  if (s.multiplicity(t) + times > s.degree() + 1) throw Error(Errc::invalid_input, "knot insertion would exceed multiplicity degree+1");
+  std::vector<S> T = s.knots();
+  std::vector<Coef> P = s.ctrl();
+  const int p = s.degree();
+  for (int step = 0; step < times; ++step) {
+    const int k = static_cast<int>(std::upper_bound(T.begin(), T.end(), t) - T.begin()) - 1;
+    std::vector<Coef> Q;
+    Q.reserve(P.size() + 1);
+    for (int i = 0; i <= static_cast<int>(P.size()); ++i) {
+      if (i <= k - p) {
+        Q.push_back(P[static_cast<std::size_t>(i)]);
+      } else if (i <= k) {
+        const std::size_t ui = static_cast<std::size_t>(i);
+        const S alpha = S((t - T[ui]) / (T[ui + static_cast<std::size_t>(p)] - T[ui]));
+        Q.push_back(detail::lerp(P[ui - 1], P[ui], alpha));
+      } else {
+        Q.push_back(P[static_cast<std::size_t>(i - 1)]);
+      }
+    }
+    T.insert(T.begin() + (k + 1), t);
+    P = std::move(Q);
+  }
+  return BSpline<Coef>::make(p, std::move(T), std::move(P));
+}
+
+/// The Bezier form of s on [x, y], a sub-interval of one knot span.
+template <typename Coef>
+Bernstein<Coef> bezier_piece(const BSpline<Coef>& s, const coef_scalar_t<Coef>& x, const coef_scalar_t<Coef>& y) {
+  const int p = s.degree();
+  const int j = s.find_span(x);
+  std::vector<Coef> c;
+  for (int i = 0; i <= p; ++i) {
+    std::vector<coef_scalar_t<Coef>> u(static_cast<std::size_t>(p - i), x);
+    u.insert(u.end(), static_cast<std::size_t>(i), y);
+    c.push_back(blossom(s, j, u));
+  }
+  return Bernstein<Coef>(std::move(c), x, y);
+}
+
+/// Decomposition into Bezier pieces, one per non-empty knot span.
+template <typename Coef>
+std::vector<Bernstein<Coef>> bezier_pieces(const BSpline<Coef>& s) {
+  const auto x = s.breakpoints();
+  std::vector<Bernstein<Coef>> pieces;
+  for (std::size_t k = 0; k + 1 < x.size(); ++k) pieces.push_back(bezier_piece(s, x[k], x[k + 1]));
+  return pieces;
+}
+
+/// Reassembles a spline of the given degree and clamped knot vector from Bezier pieces on
+/// its spans (pieces[k] on [x_k, x_{k+1}] of the knot vector's breakpoints). Each pole is
+/// the blossom of a piece under its support at the pole's knot window (dual functionals);
+/// exact when the pieces join with the continuity the knot vector states.
+template <typename Coef>
+BSpline<Coef> from_bezier_pieces(const std::vector<Bernstein<Coef>>& pieces, int degree,
+                                 std::vector<coef_scalar_t<Coef>> knots) {
+  using S = coef_scalar_t<Coef>;
+  const std::size_t d = static_cast<std::size_t>(degree);
+  const std::size_t n = knots.size() - d - 1;
+  std::vector<S> x;
+  for (const auto& v : knots)
+    if (x.empty() || x.back() != v) x.push_back(v);
+  if (x.size() != pieces.size() + 1) throw Error(Errc::internal, "Bezier pieces do not match the knot vector");
+  std::vector<Coef> ctrl;
+  ctrl.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    // Non-empty span within the pole's support [T_i, T_{i+d+1}], nearest its middle.
+    std::size_t best = d;
+    bool found = false;
+    for (std::size_t j = std::max(i, d); j <= std::min(i + d, n - 1); ++j)
+      if (knots[j] < knots[j + 1]) {
+        const auto dist = [&](std::size_t jj) { return jj > i + d / 2 ? jj - (i + d / 2) : (i + d / 2) - jj; };
+        if (!found || dist(j) < dist(best)) best = j;
+        found = true;
+      }
+    if (!found) throw Error(Errc::internal, "pole without a non-empty span");
+    const std::size_t k = static_cast<std::size_t>(std::lower_bound(x.begin(), x.end(), knots[best]) - x.begin());
+    std::vector<S> u(knots.begin() + static_cast<std::ptrdiff_t>(i + 1), knots.begin() + static_cast<std::ptrdiff_t>(i + d + 1));
+    ctrl.push_back(d == 0 ? pieces[k][0] : blossom(pieces[k], u));
+  }
+  return BSpline<Coef>::make(degree, std::move(knots), std::move(ctrl));
+}
+
+/// Product s * r of two splines on the same interval (coefficient order kept). Degree
+/// p + q; at a breakpoint x the product is C^min(p - m_s(x), q - m_r(x)), so x gets
+/// multiplicity p + q - min(p - m_s, q - m_r). Built per span by (29), reassembled exactly.
+template <typename A, typename B, typename Op = RingMul>
+auto product(const BSpline<A>& s, const BSpline<B>& r, Op op = {}) {
+  using R = std::decay_t<decltype(op(s.ctrl()[0], r.ctrl()[0]))>;
+  using S = coef_scalar_t<R>;
+  if (s.a() != r.a() || s.b() != r.b()) throw Error(Errc::invalid_input, "product of splines on different intervals");
+  const int p = s.degree(), q = r.degree(), d = p + q;
+  std::vector<S> x = s.breakpoints();
+  for (const auto& v : r.breakpoints()) x.push_back(v);
+  std::sort(x.begin(), x.end());
+  x.erase(std::unique(x.begin(), x.end()), x.end());
+  std::vector<Bernstein<R>> pieces;
+  for (std::size_t k = 0; k + 1 < x.size(); ++k)
+    pieces.push_back(product(bezier_piece(s, x[k], x[k + 1]), bezier_piece(r, x[k], x[k + 1]), op));
+  std::vector<S> knots(static_cast<std::size_t>(d + 1), x.front());
+  for (std::size_t k = 1; k + 1 < x.size(); ++k) {
+    const int cont = std::min(p - s.multiplicity(x[k]), q - r.multiplicity(x[k]));
+    knots.insert(knots.end(), static_cast<std::size_t>(std::max(0, d - cont)), x[k]);
+  }
+  knots.insert(knots.end(), static_cast<std::size_t>(d + 1), x.back());
+  return from_bezier_pieces(pieces, d, std::move(knots));
+}
+
+/// Derivative ds/dt (degree p-1 on the inner knot vector).
+template <typename Coef>
+BSpline<Coef> derivative(const BSpline<Coef>& s) {
+  using S = coef_scalar_t<Coef>;
+  const int p = s.degree();
+  const auto& T = s.knots();
+  const auto& P = s.ctrl();
+  if (p == 0) return BSpline<Coef>::make(0, {s.a(), s.b()}, {coef_zero<Coef>()});
+  std::vector<Coef> Q;
+  for (std::size_t i = 0; i + 1 < P.size(); ++i) {
+    const S den = T[i + static_cast<std::size_t>(p) + 1] - T[i + 1];
+    Q.push_back(den == S(0) ? coef_zero<Coef>() : scale(S(S(p) / den), Coef(P[i + 1] - P[i])));
+  }
+  return BSpline<Coef>::make(p - 1, std::vector<S>(T.begin() + 1, T.end() - 1), std::move(Q));
+}
+
+/// Applies f to every pole.
+template <typename Coef, typename F>
+auto map_coeffs(const BSpline<Coef>& s, F&& f) {
+  using R = std::decay_t<decltype(f(s.ctrl()[0]))>;
+  std::vector<R> c;
+  for (const auto& x : s.ctrl()) c.push_back(f(x));
+  return BSpline<R>::make(s.degree(), s.knots(), std::move(c));
+}
+
+}  // namespace qmotion::kernel

@@ -1,0 +1,167 @@
+// kernel/motion.hpp
+#pragma once
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "kernel/bspline.hpp"
+#include "kernel/dual_quaternion.hpp"
+
+namespace qmotion::kernel {
+
+/// How a Q-motion was given: one Bezier polynomial (13) or a B-spline (section 6).
+enum class Basis { bezier, bspline };
+
+/// A Q-motion: a dual-quaternion polynomial or spline Q(t) on [a, b]. A Bezier motion is
+/// stored as the B-spline on the knot vector a^(n+1) b^(n+1), so every algorithm has one
+/// representation; `basis` records how it is written.
+/// @see Juettler 1994, eq. (13) and section 6
+template <typename Scalar>
+struct QMotion {
+  Basis basis;
+  BSpline<DualQuaternion<Scalar>> curve;
+
+  int degree() const { return curve.degree(); }
+  const Scalar& a() const { return curve.a(); }
+  const Scalar& b() const { return curve.b(); }
+  /// Number of polynomial segments (non-empty knot spans).
+  int segments() const { return static_cast<int>(curve.breakpoints().size()) - 1; }
+};
+
+/// Polar forms (symmetric bilinear maps) of the quadratic maps of a dual quaternion used
+/// below; product(Q, Q, polar) gives the composite polynomial exactly.
+namespace polar {
+/// |Q0|^2: the weight (homogenising coordinate) of every trajectory.
+struct Weight {
+  template <typename S>
+  S operator()(const DualQuaternion<S>& a, const DualQuaternion<S>& b) const {
+    return a.real().dot(b.real());
+  }
+};
+/// The Plucker form (8).
+struct Plucker {
+  template <typename S>
+  S operator()(const DualQuaternion<S>& a, const DualQuaternion<S>& b) const {
+    return S((a.real().dot(b.dual()) + b.real().dot(a.dual())) / S(2));
+  }
+};
+/// The 4x4 matrix (10) of kernel/dual_quaternion.hpp's to_matrix4.
+struct Matrix4 {
+  template <typename S>
+  Eigen::Matrix<S, 4, 4> operator()(const DualQuaternion<S>& a, const DualQuaternion<S>& b) const {
+    const Eigen::Matrix<S, 4, 4> m = to_matrix4(DualQuaternion<S>(a + b)) - to_matrix4(a) - to_matrix4(b);
+    return (m / S(2)).eval();
+  }
+};
+/// The image (12) of a fixed homogeneous point x.
+template <typename S>
+struct PointImage {
+  Eigen::Matrix<S, 4, 1> x;
+  Eigen::Matrix<S, 4, 1> operator()(const DualQuaternion<S>& a, const DualQuaternion<S>& b) const {
+    const Eigen::Matrix<S, 4, 1> y = apply(DualQuaternion<S>(a + b), x) - apply(a, x) - apply(b, x);
+    return (y / S(2)).eval();
+  }
+};
+}  // namespace polar
+
+/// Q(t).
+template <typename Scalar>
+DualQuaternion<Scalar> evaluate(const QMotion<Scalar>& m, const Scalar& t) {
+  return evaluate(m.curve, t);
+}
+
+/// The scalar spline |Q0(t)|^2 (degree 2n).
+template <typename Scalar>
+BSpline<Scalar> weight_spline(const QMotion<Scalar>& m) {
+  return product(m.curve, m.curve, polar::Weight{});
+}
+
+/// The scalar spline of the Plucker form (8) along the motion (degree 2n).
+template <typename Scalar>
+BSpline<Scalar> plucker_spline(const QMotion<Scalar>& m) {
+  return product(m.curve, m.curve, polar::Plucker{});
+}
+
+/// The 4x4 matrix spline M(t) of (10) (degree 2n): y(t) = M(t) x for every point x.
+template <typename Scalar>
+BSpline<Eigen::Matrix<Scalar, 4, 4>> matrix_spline(const QMotion<Scalar>& m) {
+  return product(m.curve, m.curve, polar::Matrix4{});
+}
+
+/// The homogeneous trajectory (y0, y) of the homogeneous point x (degree 2n before
+/// reduction).
+template <typename Scalar>
+BSpline<Eigen::Matrix<Scalar, 4, 1>> homogeneous_trajectory(const QMotion<Scalar>& m,
+                                                             const Eigen::Matrix<Scalar, 4, 1>& x) {
+  return product(m.curve, m.curve, polar::PointImage<Scalar>{x});
+}
+
+/// Plucker residual of the whole motion: max |Plucker coefficient| / max |weight
+/// coefficient| over the Bernstein/B-spline coefficients of the two degree-2n splines.
+/// Exactly zero for an exact Q-motion in exact arithmetic.
+template <typename Scalar>
+Scalar plucker_residual(const QMotion<Scalar>& m) {
+  const BSpline<Scalar> pl = plucker_spline(m), w = weight_spline(m);
+  Scalar num(0), den(0);
+  for (const auto& c : pl.ctrl()) num = std::max(num, abs_value(c));
+  for (const auto& c : w.ctrl()) den = std::max(den, abs_value(c));
+  if (den == Scalar(0)) throw Error(Errc::numerical_failure, "motion with identically zero rotational part");
+  return Scalar(num / den);
+}
+
+/// Zeros of the rotational part Q0(t) on [a, b] (poles of the motion: the trajectories
+/// run to infinity there). Q0 vanishes exactly where the weight |Q0|^2 >= 0 does; the
+/// weight's Bernstein pieces are subdivided where their convex hull reaches below
+/// rel_tol times the weight's scale, pruning every piece whose coefficients stay above.
+/// @return parameters of the poles found, ascending
+template <typename Scalar>
+std::vector<double> find_poles(const QMotion<Scalar>& m, double rel_tol = 1e-16) {
+  const BSpline<Scalar> w_exact = weight_spline(m);
+  std::vector<double> knots;
+  std::vector<double> ctrl;
+  for (const auto& k : w_exact.knots()) knots.push_back(to_double(k));
+  for (const auto& c : w_exact.ctrl()) ctrl.push_back(to_double(c));
+  const BSpline<double> w = BSpline<double>::make(w_exact.degree(), knots, ctrl);
+  double scale = 0.0;
+  for (double c : ctrl) scale = std::max(scale, std::abs(c));
+  const double thr = rel_tol * scale;
+  // A double zero of |Q0|^2 is located to about sqrt(eps) in double precision: leaves
+  // narrower than that add nothing, and neighbouring leaves are one pole.
+  const double range = knots.back() - knots.front();
+  const double width_min = 1e-10 * range;
+  std::vector<std::pair<double, double>> leaves;  // (t, weight)
+  std::vector<Bernstein<double>> stack = bezier_pieces(w);
+  std::size_t budget = 200000;
+  while (!stack.empty() && budget-- > 0) {
+    Bernstein<double> p = std::move(stack.back());
+    stack.pop_back();
+    double lo = p[0];
+    for (double c : p.coeffs()) lo = std::min(lo, c);
+    if (lo > thr) continue;
+    const double mid = 0.5 * (p.a() + p.b());
+    if (p.b() - p.a() <= width_min) {
+      const double v = evaluate(p, mid);
+      if (v <= thr) leaves.emplace_back(mid, v);
+      continue;
+    }
+    auto halves = subdivide(p, mid);
+    stack.push_back(std::move(halves.second));
+    stack.push_back(std::move(halves.first));
+  }
+  std::sort(leaves.begin(), leaves.end());
+  std::vector<double> poles;
+  double last_t = 0.0, best_v = 0.0;
+  for (const auto& [t, v] : leaves) {
+    if (poles.empty() || t - last_t > 1e-7 * range) {
+      poles.push_back(t);
+      best_v = v;
+    } else if (v < best_v) {
+      poles.back() = t;
+      best_v = v;
+    }
+    last_t = t;
+  }
+  return poles;
+}
+
+}  // namespace qmotion::kernel

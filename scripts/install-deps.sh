@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Installs qmotion's build and test dependencies from Debian's packages.
+# Usage: scripts/install-deps.sh [--test]
+#   --test  also installs what the test suite needs (GoogleTest, Google Benchmark).
+set -euo pipefail
+
+packages=(
+  cmake g++ make ccache pkg-config
+  libeigen3-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
+  nlohmann-json3-dev libcli11-dev
+  libocct-foundation-dev libocct-modeling-data-dev libocct-modeling-algorithms-dev
+  libocct-data-exchange-dev libtbb-dev
+)
+if [[ "${1:-}" == "--test" ]]; then
+  packages+=(googletest libgtest-dev libgmock-dev libbenchmark-dev)
+fi
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]} == 0)); then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+sudo=""
+if [[ $(id -u) -ne 0 ]]; then sudo="sudo"; fi
+echo "install-deps: installing ${missing[*]}"
+$sudo apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
