@@ -1,0 +1,31 @@
+// io/atomic_file.hpp
+#pragma once
+#include <string>
+
+namespace qmotion::io {
+
+/// An output file that appears only when complete (SPEC §6): writers write to temp_path(),
+/// commit() renames it onto the final path; destroying an uncommitted AtomicOutput
+/// removes the temporary, so a failure leaves nothing behind.
+class AtomicOutput {
+ public:
+  explicit AtomicOutput(std::string path);
+  ~AtomicOutput();
+  AtomicOutput(const AtomicOutput&) = delete;
+  AtomicOutput& operator=(const AtomicOutput&) = delete;
+
+  const std::string& path() const { return path_; }
+  /// Temporary file in the same folder (same file system, so the rename is atomic).
+  const std::string& temp_path() const { return temp_; }
+  /// Renames the temporary onto path(); throws Errc::invalid_input naming the path.
+  void commit();
+
+ private:
+  std::string path_, temp_;
+  bool committed_ = false;
+};
+
+/// Writes `content` to `path` atomically; throws Errc::invalid_input naming the path.
+void write_file_atomic(const std::string& path, const std::string& content);
+
+}  // namespace qmotion::io

@@ -1,0 +1,65 @@
+// io/exact_number.hpp
+#pragma once
+// Exact conversion of number text to CGAL::Exact_rational (exact mode).
+#include <sstream>
+#include <string>
+
+#include "kernel/cgal_scalar.hpp"
+#include "kernel/error.hpp"
+
+namespace qmotion::io {
+
+/// The exact rational value of an integer, decimal ("-1.25e-3") or "p/q" text, as
+/// produced by parse_number_text. Throws Errc::invalid_input on other text.
+inline kernel::Rational exact_from_text(const std::string& text) {
+  using kernel::Rational;
+  const auto slash = text.find('/');
+  // Sign and digits only, without leading zeros: gmpxx reads a leading 0 as octal.
+  auto integer = [&](std::string s) {
+    bool negative = false;
+    if (!s.empty() && (s[0] == '+' || s[0] == '-')) {
+      negative = s[0] == '-';
+      s.erase(0, 1);
+    }
+    if (s.empty() || s.find_first_not_of("0123456789") != std::string::npos)
+      throw Error(Errc::invalid_input, "'" + text + "' is not an exact number");
+    const auto first = s.find_first_not_of('0');
+    s = first == std::string::npos ? "0" : s.substr(first);
+    return Rational((negative ? "-" : "") + s);
+  };
+  if (slash != std::string::npos) {
+    const Rational p = integer(text.substr(0, slash)), q = integer(text.substr(slash + 1));
+    if (q == Rational(0)) throw Error(Errc::invalid_input, "'" + text + "' has a zero denominator");
+    return Rational(p / q);
+  }
+  // Decimal: mantissa digits with the point removed, scaled by a power of ten.
+  std::string s = text;
+  long exp10 = 0;
+  const auto e = s.find_first_of("eE");
+  if (e != std::string::npos) {
+    exp10 = std::stol(s.substr(e + 1));
+    s.erase(e);
+  }
+  const auto dot = s.find('.');
+  if (dot != std::string::npos) {
+    exp10 -= static_cast<long>(s.size() - dot - 1);
+    s.erase(dot, 1);
+  }
+  if (s.empty() || s == "-" || s == "+") s += "0";
+  if (exp10 < -100000 || exp10 > 100000) throw Error(Errc::invalid_input, "'" + text + "' has an exponent out of range");
+  Rational value = integer(s);
+  const Rational ten(10);
+  Rational scale(1);
+  for (long i = 0; i < (exp10 < 0 ? -exp10 : exp10); ++i) scale *= ten;
+  if (exp10 < 0) return Rational(value / scale);
+  return Rational(value * scale);
+}
+
+/// Text of an exact rational for files: "p/q", or "p" when integral.
+inline std::string exact_to_text(const kernel::Rational& r) {
+  std::ostringstream os;
+  os << r;
+  return os.str();
+}
+
+}  // namespace qmotion::io

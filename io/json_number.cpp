@@ -1,0 +1,193 @@
+// io/json_number.cpp
+#include "io/json_number.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <vector>
+
+#include "kernel/error.hpp"
+
+#ifdef QMOTION_WITH_CGAL
+#include "io/exact_number.hpp"
+#endif
+
+namespace qmotion::io {
+namespace {
+
+using json = nlohmann::json;
+
+/// SAX handler that builds the DOM like nlohmann's own, except that float literals are kept
+/// as their source text (strings), so no digit of the input is lost.
+class TextPreservingSax : public nlohmann::json_sax<json> {
+ public:
+  explicit TextPreservingSax(json& root) : root_(root) {}
+
+  bool null() override { return put(json(nullptr)); }
+  bool boolean(bool v) override { return put(json(v)); }
+  bool number_integer(number_integer_t v) override { return put(json(v)); }
+  bool number_unsigned(number_unsigned_t v) override { return put(json(v)); }
+  bool number_float(number_float_t, const string_t& s) override { return put(json(s)); }
+  bool string(string_t& v) override { return put(json(v)); }
+  bool binary(binary_t& v) override { return put(json::binary(v)); }
+  bool start_object(std::size_t) override { return open(json::object()); }
+  bool key(string_t& k) override {
+    key_ = k;
+    return true;
+  }
+  bool end_object() override {
+    stack_.pop_back();
+    return true;
+  }
+  bool start_array(std::size_t) override { return open(json::array()); }
+  bool end_array() override {
+    stack_.pop_back();
+    return true;
+  }
+  bool parse_error(std::size_t pos, const std::string& last_token, const nlohmann::detail::exception& ex) override {
+    error_pos_ = pos;
+    last_token_ = last_token;
+    error_ = ex.what();
+    return false;
+  }
+
+  std::size_t error_pos_ = 0;
+  std::string last_token_, error_;
+
+ private:
+  bool put(json v) {
+    if (stack_.empty()) {
+      root_ = std::move(v);
+    } else if (stack_.back()->is_array()) {
+      stack_.back()->push_back(std::move(v));
+    } else {
+      (*stack_.back())[key_] = std::move(v);
+    }
+    return true;
+  }
+  bool open(json v) {
+    if (stack_.empty()) {
+      root_ = std::move(v);
+      stack_.push_back(&root_);
+    } else if (stack_.back()->is_array()) {
+      stack_.back()->push_back(std::move(v));
+      stack_.push_back(&stack_.back()->back());
+    } else {
+      json& slot = (*stack_.back())[key_];
+      slot = std::move(v);
+      stack_.push_back(&slot);
+    }
+    return true;
+  }
+  json& root_;
+  std::vector<json*> stack_;
+  std::string key_;
+};
+
+std::string line_column(const std::string& text, std::size_t pos) {
+  std::size_t line = 1, col = 1;
+  for (std::size_t i = 0; i + 1 < pos && i < text.size(); ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      col = 1;
+    } else {
+      ++col;
+    }
+  }
+  return "line " + std::to_string(line) + ", column " + std::to_string(col);
+}
+
+}  // namespace
+
+Number Number::from_double(double v) {
+  std::ostringstream os;
+  os.precision(17);
+  os << v;
+  return Number{os.str(), v};
+}
+
+json parse_json(const std::string& text, const std::string& source) {
+  json root;
+  TextPreservingSax sax(root);
+  const bool ok = json::sax_parse(text, &sax, json::input_format_t::json, /*strict=*/true);
+  if (!ok) {
+    std::string msg = source + ": invalid JSON at " + line_column(text, sax.error_pos_);
+    const std::string& tok = sax.last_token_;
+    if (tok.find("NaN") != std::string::npos || tok.find("nan") != std::string::npos ||
+        tok.find("Inf") != std::string::npos || tok.find("inf") != std::string::npos ||
+        (!tok.empty() && (tok.back() == 'N' || tok.back() == 'I'))) {
+      msg += ": NaN and Infinity are not numbers (JSON has no such literals; every number must be finite)";
+    } else if (sax.error_.find("number overflow") != std::string::npos) {
+      msg += ": number " + tok + " is out of the range of double";
+    } else {
+      msg += ": " + sax.error_;
+    }
+    throw Error(Errc::invalid_input, msg);
+  }
+  return root;
+}
+
+std::string read_text_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(Errc::invalid_input, path + ": cannot open file for reading");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  if (in.bad()) throw Error(Errc::invalid_input, path + ": read error");
+  return ss.str();
+}
+
+json read_json_file(const std::string& path) { return parse_json(read_text_file(path), path); }
+
+Number parse_number_text(const std::string& raw, const std::string& where) {
+  static const std::regex decimal(R"(\s*([+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?)\s*)");
+  static const std::regex ratio(R"(\s*([+-]?\d+)\s*/\s*([+-]?\d+)\s*)");
+  std::smatch m;
+  if (std::regex_match(raw, m, decimal)) {
+    const std::string t = m[1].str();
+    const double v = std::strtod(t.c_str(), nullptr);
+    if (!std::isfinite(v)) throw Error(Errc::invalid_input, where + ": number '" + raw + "' is out of the range of double");
+    return Number{t, v};
+  }
+  if (std::regex_match(raw, m, ratio)) {
+    const std::string p = m[1].str(), q = m[2].str();
+    if (q.find_first_not_of("+-0") == std::string::npos)
+      throw Error(Errc::invalid_input, where + ": rational '" + raw + "' has a zero denominator");
+    Number n{p + "/" + q, 0.0};
+#ifdef QMOTION_WITH_CGAL
+    n.value = kernel::to_double(exact_from_text(n.text));
+#else
+    n.value = std::strtod(p.c_str(), nullptr) / std::strtod(q.c_str(), nullptr);
+#endif
+    if (!std::isfinite(n.value)) throw Error(Errc::invalid_input, where + ": number '" + raw + "' is out of the range of double");
+    return n;
+  }
+  std::string lower = raw;
+  for (auto& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (lower.find("nan") != std::string::npos || lower.find("inf") != std::string::npos)
+    throw Error(Errc::invalid_input, where + ": '" + raw + "' is not a finite number");
+  throw Error(Errc::invalid_input, where + ": '" + raw + "' is not a number (expected e.g. 1.5, -2e3 or \"3/4\")");
+}
+
+Number read_number(const json& j, const std::string& where) {
+  if (j.is_number_integer()) return Number{j.dump(), static_cast<double>(j.get<std::int64_t>())};
+  if (j.is_number_unsigned()) return Number{j.dump(), static_cast<double>(j.get<std::uint64_t>())};
+  if (j.is_number_float()) {  // only from JSON built in memory, not from parse_json
+    const double v = j.get<double>();
+    if (!std::isfinite(v)) throw Error(Errc::invalid_input, where + ": not a finite number");
+    return Number::from_double(v);
+  }
+  if (j.is_string()) return parse_number_text(j.get<std::string>(), where);
+  throw Error(Errc::invalid_input, where + ": expected a number, found " + std::string(j.type_name()));
+}
+
+const json& require(const json& j, const std::string& key, const std::string& where) {
+  if (!j.is_object()) throw Error(Errc::invalid_input, where + ": expected an object, found " + std::string(j.type_name()));
+  const auto it = j.find(key);
+  if (it == j.end()) throw Error(Errc::invalid_input, where + ": missing field '" + key + "'");
+  return *it;
+}
+
+json json_number(double v) { return json(v); }
+
+}  // namespace qmotion::io

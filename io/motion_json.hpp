@@ -1,0 +1,51 @@
+// io/motion_json.hpp
+#pragma once
+#include <array>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "io/json_number.hpp"
+#include "kernel/motion.hpp"
+
+#ifdef QMOTION_WITH_CGAL
+#include "kernel/cgal_scalar.hpp"
+#endif
+
+namespace qmotion::io {
+
+/// A validated motion file (SPEC §5), numbers with their source text so that exact mode
+/// reads them exactly.
+struct MotionFile {
+  std::string source;  ///< file name, for messages
+  kernel::Basis basis = kernel::Basis::bezier;
+  int degree = 0;
+  std::vector<Number> knots;  ///< full clamped vector (built from param_range for Bezier)
+  std::array<Number, 2> range;
+  std::vector<std::array<Number, 8>> ctrl;  ///< (w, x, y, z, eps w, eps x, eps y, eps z)
+  std::string units = "mm";
+  nlohmann::json method;  ///< how the motion was made (null for hand-written files)
+};
+
+/// Validates a parsed motion document; throws Errc::invalid_input naming `source` and the
+/// field.
+MotionFile parse_motion(const nlohmann::json& doc, const std::string& source);
+/// Reads and validates a motion file.
+MotionFile read_motion(const std::string& path);
+
+/// The motion in double precision.
+kernel::QMotion<double> to_motion_double(const MotionFile& f);
+
+/// A motion file document: numbers at full double precision.
+nlohmann::json motion_to_json(const kernel::QMotion<double>& m, const nlohmann::json& method,
+                              const std::string& units = "mm");
+
+#ifdef QMOTION_WITH_CGAL
+/// The motion read exactly (every decimal and "p/q" as the rational it denotes).
+kernel::QMotion<kernel::Rational> to_motion_exact(const MotionFile& f);
+/// A motion file document with every number an exact "p/q" string.
+nlohmann::json motion_to_json(const kernel::QMotion<kernel::Rational>& m, const nlohmann::json& method,
+                              const std::string& units = "mm");
+#endif
+
+}  // namespace qmotion::io

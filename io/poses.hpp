@@ -1,0 +1,71 @@
+// io/poses.hpp
+#pragma once
+#include <Eigen/Core>
+#include <array>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "io/json_number.hpp"
+#include "kernel/dual_quaternion.hpp"
+
+namespace qmotion::io {
+
+/// A rotation as the file gave it (SPEC §5).
+struct RotationInput {
+  enum class Kind { quaternion, matrix, axis_angle };
+  Kind kind = Kind::quaternion;
+  /// quaternion: w, x, y, z; matrix: 9 entries row by row; axis_angle: axis x, y, z, angle_deg
+  std::vector<Number> values;
+};
+
+/// One pose as read, numbers with their source text.
+struct PoseInput {
+  std::optional<Number> t;
+  std::array<Number, 3> position;
+  RotationInput rotation;
+};
+
+/// A validated pose file: at least two poses, finite numbers, non-zero rotations, proper
+/// rotation matrices, and strictly increasing t when t is given (for all poses or none).
+struct PoseSet {
+  std::string source;        ///< file name, for messages
+  std::string units = "mm";  ///< length unit of the positions
+  std::vector<PoseInput> poses;
+
+  bool has_t() const { return !poses.empty() && poses.front().t.has_value(); }
+};
+
+/// A pose in kernel numbers: P = (2 + eps s) * r of (14).
+template <typename Scalar>
+struct Pose {
+  std::optional<Scalar> t;
+  Eigen::Matrix<Scalar, 3, 1> position;
+  kernel::Quaternion<Scalar> rotation;  ///< non-zero, not necessarily unit
+
+  kernel::DualQuaternion<Scalar> dual_quaternion() const {
+    return kernel::DualQuaternion<Scalar>::pose(position, rotation);
+  }
+};
+
+/// Reads poses from a .json or .csv file (by extension; other names are tried as JSON).
+PoseSet read_poses(const std::string& path);
+/// Parses pose JSON (SPEC §5); `source` names the input in messages.
+PoseSet parse_poses_json(const std::string& text, const std::string& source);
+/// The same for an already parsed document (e.g. the poses a motion file records).
+PoseSet parse_poses_json_value(const nlohmann::json& doc, const std::string& source);
+/// Parses pose CSV with header t,x,y,z,qw,qx,qy,qz (t optional; blank lines and lines
+/// starting with '#' are skipped).
+PoseSet parse_poses_csv(const std::string& text, const std::string& source);
+
+/// Poses in double precision (rotations as unit quaternions with the file's sign).
+std::vector<Pose<double>> to_poses_double(const PoseSet& set);
+
+/// The poses as JSON (SPEC §5), numbers written with their source text.
+nlohmann::json poses_to_json(const PoseSet& set);
+
+/// Length units accepted in files.
+bool is_known_unit(const std::string& unit);
+
+}  // namespace qmotion::io

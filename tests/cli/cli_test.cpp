@@ -1,0 +1,199 @@
+// tests/cli/cli_test.cpp: the qmotion executable against SPEC §6 (exit codes, messages,
+// JSON output, no output file on failure).
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "io_test_util.hpp"
+
+namespace qmotion::test {
+namespace {
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+const std::string kExe = QMOTION_EXE;
+const std::string kData = QMOTION_TEST_DATA;
+const std::string kExamples = QMOTION_EXAMPLES;
+
+struct Result {
+  int status;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream f(p);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+fs::path scratch_dir() {
+  static const fs::path d = [] {
+    const fs::path p = fs::temp_directory_path() / ("qmotion_cli_" + std::to_string(::getpid()));
+    fs::create_directories(p);
+    return p;
+  }();
+  return d;
+}
+
+std::string quote(const std::string& a) {
+  std::string q = "'";
+  for (char c : a) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+Result run(const std::vector<std::string>& args) {
+  const fs::path out = scratch_dir() / "stdout", err = scratch_dir() / "stderr";
+  std::string cmd = quote(kExe);
+  for (const auto& a : args) cmd += " " + quote(a);
+  cmd += " >" + quote(out.string()) + " 2>" + quote(err.string()) + " </dev/null";
+  const int raw = std::system(cmd.c_str());
+  return Result{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
+}
+
+json run_json(const std::vector<std::string>& args) {
+  const Result r = run(args);
+  EXPECT_EQ(r.status, 0) << r.err;
+  return json::parse(r.out);
+}
+
+TEST(Cli, HelpVersionAndUsage) {
+  const Result h = run({"--help"});
+  EXPECT_EQ(h.status, 0);
+  for (const char* cmd : {"info", "eval", "poses", "demo", "Exit status"}) EXPECT_NE(h.out.find(cmd), std::string::npos) << cmd;
+  const Result sub = run({"eval", "--help"});
+  EXPECT_EQ(sub.status, 0);
+  EXPECT_NE(sub.out.find("--point"), std::string::npos);
+  const Result v = run({"--version"});
+  EXPECT_EQ(v.status, 0);
+  EXPECT_NE(v.out.find("OpenCASCADE 7."), std::string::npos);
+  EXPECT_EQ(run({}).status, 2);
+  const Result bad = run({"frobnicate"});
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("qmotion: error:"), std::string::npos);
+  EXPECT_EQ(run({"eval", kExamples + "/motions/bezier_tr.json"}).status, 2);  // --t missing
+}
+
+TEST(Cli, EvalFollowsTheHandDerivedMotion) {
+  // bezier_tr.json is (2 + eps p(t)) * r(t), p(t) = t (10, 20, 0), r from 1 to 1 + k.
+  const std::string f = kExamples + "/motions/bezier_tr.json";
+  const json a = run_json({"eval", f, "--t", "0.5"});
+  EXPECT_EQ(a["t"], 0.5);
+  EXPECT_NEAR(a["position"][0].get<double>(), 5.0, 1e-13);
+  EXPECT_NEAR(a["position"][1].get<double>(), 10.0, 1e-13);
+  // r(1/2) = 1 + k/2: angle 2 atan(1/2) about z, returned as a unit quaternion, w >= 0.
+  const double half = std::atan(0.5);
+  EXPECT_NEAR(a["quaternion"][0].get<double>(), std::cos(half), 1e-15);
+  EXPECT_NEAR(a["quaternion"][3].get<double>(), std::sin(half), 1e-15);
+  EXPECT_EQ(a["point"], a["position"]);  // default point: the origin
+  // At t = 1 the rotation is 90 degrees about z: (1, 0, 0) goes to p(1) + (0, 1, 0).
+  const json b = run_json({"eval", f, "--t", "1", "--point", "1,0,0"});
+  EXPECT_NEAR(b["point"][0].get<double>(), 10.0, 1e-13);
+  EXPECT_NEAR(b["point"][1].get<double>(), 21.0, 1e-13);
+  EXPECT_NEAR(b["point"][2].get<double>(), 0.0, 1e-13);
+}
+
+TEST(Cli, NegativeParametersAreValues) {
+  // The example shifted to [-2, -1]: --t -1.5 is its midpoint.
+  json m = json::parse(slurp(kExamples + "/motions/bezier_tr.json"));
+  m["param_range"] = {-2, -1};
+  const fs::path f = scratch_dir() / "shifted.json";
+  std::ofstream(f) << m.dump();
+  const json a = run_json({"eval", f.string(), "--t", "-1.5"});
+  EXPECT_NEAR(a["position"][0].get<double>(), 5.0, 1e-13);
+  const Result out = run({"eval", kExamples + "/motions/bezier_tr.json", "--t", "-1.5"});
+  EXPECT_EQ(out.status, 2);
+  EXPECT_NE(out.err.find("outside"), std::string::npos) << out.err;
+}
+
+TEST(Cli, InfoReportsTheSpecKeys) {
+  for (const std::string name : {"bezier_tr.json", "bspline_tr.json"}) {
+    const json i = run_json({"info", kExamples + "/motions/" + name});
+    for (const char* key : {"type", "basis", "degree", "order", "segments", "param_range", "plucker_residual",
+                            "interpolation_residual", "poles"})
+      EXPECT_TRUE(i.contains(key)) << key;
+    EXPECT_EQ(i["degree"], 2);
+    // TR with rotation degree k = 1 and translation degree l = 1: a general point's
+    // trajectory has degree 2k + l = 3, below the 2n = 4 of its representation.
+    EXPECT_EQ(i["order"], 3);
+    EXPECT_EQ(i["plucker_residual"], 0.0);
+    EXPECT_TRUE(i["poles"].empty());
+  }
+  EXPECT_EQ(run_json({"info", kExamples + "/motions/bspline_tr.json"})["segments"], 2);
+  const json ex = run_json({"info", "--exact", kExamples + "/motions/bspline_tr.json"});
+  EXPECT_EQ(ex["exact"], true);
+  EXPECT_EQ(ex["plucker_residual"], 0.0);
+}
+
+TEST(Cli, PolesAreReportedAndEvalAtAPoleIsANumericalFailure) {
+  // Rotational part 2(1 - 2t): zero at t = 1/2.
+  const json m{{"type", "q-motion"}, {"basis", "bezier"}, {"degree", 1}, {"param_range", {0, 1}},
+               {"control_points", {{2, 0, 0, 0, 0, 0, 0, 0}, {-2, 0, 0, 0, 0, 0, 0, 0}}}};
+  const fs::path f = scratch_dir() / "pole.json";
+  std::ofstream(f) << m.dump();
+  const json i = run_json({"info", f.string()});
+  ASSERT_EQ(i["poles"].size(), 1u);
+  EXPECT_NEAR(i["poles"][0].get<double>(), 0.5, 1e-8);
+  const Result e = run({"eval", f.string(), "--t", "0.5"});
+  EXPECT_EQ(e.status, 3);
+  EXPECT_NE(e.err.find("pole"), std::string::npos) << e.err;
+}
+
+TEST(Cli, BadMotionFilesExitTwoNamingTheFile) {
+  for (const auto& entry : fs::directory_iterator(kData + "/bad_motions")) {
+    const Result r = run({"info", entry.path().string()});
+    EXPECT_EQ(r.status, 2) << entry.path() << ": " << r.err;
+    EXPECT_NE(r.err.find(entry.path().string()), std::string::npos) << r.err;
+    EXPECT_EQ(r.out, "");
+  }
+  const Result missing = run({"info", (scratch_dir() / "nope.json").string()});
+  EXPECT_EQ(missing.status, 2);
+  EXPECT_NE(missing.err.find("cannot open"), std::string::npos);
+  const Result badpoint = run({"eval", kExamples + "/motions/bezier_tr.json", "--t", "0", "--point", "1,2"});
+  EXPECT_EQ(badpoint.status, 2);
+  EXPECT_NE(badpoint.err.find("--point"), std::string::npos);
+}
+
+TEST(Cli, BadPoseFilesExitTwoAndLeaveNoOutput) {
+  std::vector<fs::path> files;
+  for (const auto& e : fs::directory_iterator(kData + "/bad_poses")) files.push_back(e.path());
+  for (const auto& e : fs::directory_iterator(shared_data("poses/bad"))) files.push_back(e.path());
+  files.push_back(scratch_dir() / "unreadable.json");  // does not exist
+  ASSERT_GE(files.size(), 14u);                        // the shared four and ten more of our own
+  for (const auto& in : files) {
+    const fs::path out = scratch_dir() / "out.json";
+    fs::remove(out);
+    const Result r = run({"poses", in.string(), "-o", out.string()});
+    EXPECT_EQ(r.status, 2) << in << ": " << r.err;
+    EXPECT_NE(r.err.find(in.string()), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out)) << in;
+    for (const auto& left : fs::directory_iterator(scratch_dir()))
+      EXPECT_EQ(left.path().filename().string().find(".tmp-"), std::string::npos) << "temporary left behind";
+  }
+}
+
+TEST(Cli, PosesConvertsCsvToJson) {
+  const fs::path out = scratch_dir() / "converted.json";
+  const Result r = run({"poses", kData + "/good_poses.csv", "-o", out.string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json j = json::parse(slurp(out));
+  ASSERT_EQ(j["poses"].size(), 3u);
+  EXPECT_EQ(j["poses"][2]["position"], json({10, 10, 5}));
+  EXPECT_EQ(j["poses"][1]["rotation"]["quaternion"], json({0.5, 0.5, 0.5, 0.5}));
+  const json s = run_json({"poses", shared_data("poses/five_positions.json")});
+  EXPECT_EQ(s["poses"], 5);
+}
+
+TEST(Cli, DemoExists) {
+  const Result r = run({"demo", "-o", (scratch_dir() / "demo").string()});
+  EXPECT_EQ(r.status, 0) << r.err;
+}
+
+}  // namespace
+}  // namespace qmotion::test

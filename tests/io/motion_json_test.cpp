@@ -1,0 +1,80 @@
+// tests/io/motion_json_test.cpp mirrors io/motion_json.hpp
+#include "io/motion_json.hpp"
+
+#include "io/exact_number.hpp"
+#include "io_test_util.hpp"
+
+namespace qmotion::test {
+namespace {
+
+const std::string kExamples = QMOTION_EXAMPLES;
+const std::string kData = QMOTION_TEST_DATA;
+
+TEST(MotionJson, HandWrittenExamplesAreRigidAndFollowTheirTranslation) {
+  // Both examples are (2 + eps p(t)) * r(t): the origin follows p(t) exactly.
+  const auto bez = io::to_motion_double(io::read_motion(kExamples + "/motions/bezier_tr.json"));
+  EXPECT_EQ(bez.basis, kernel::Basis::bezier);
+  EXPECT_EQ(bez.degree(), 2);
+  EXPECT_EQ(kernel::plucker_residual(bez), 0.0);
+  for (double t : {0.0, 0.3, 0.5, 1.0})
+    EXPECT_NEAR((kernel::translation_vector(kernel::evaluate(bez, t)) - Eigen::Vector3d(10 * t, 20 * t, 0)).norm(), 0, 1e-13);
+  const auto bsp = io::to_motion_double(io::read_motion(kExamples + "/motions/bspline_tr.json"));
+  EXPECT_EQ(bsp.basis, kernel::Basis::bspline);
+  EXPECT_EQ(bsp.segments(), 2);
+  for (double t : {0.0, 0.25, 0.5, 0.75, 1.0}) {
+    const Eigen::Vector3d p = t <= 0.5 ? Eigen::Vector3d(20 * t, 0, 0) : Eigen::Vector3d(10, 20 * (t - 0.5), 0);
+    EXPECT_NEAR((kernel::translation_vector(kernel::evaluate(bsp, t)) - p).norm(), 0, 1e-13) << t;
+  }
+  // Exactly: the Plucker residual of the exact reading is zero.
+  EXPECT_EQ(kernel::plucker_residual(io::to_motion_exact(io::read_motion(kExamples + "/motions/bspline_tr.json"))),
+            kernel::Rational(0));
+}
+
+TEST(MotionJson, RoundTripDoubleAndExact) {
+  for (const std::string f : {"/motions/bezier_tr.json", "/motions/bspline_tr.json"}) {
+    const auto file = io::read_motion(kExamples + f);
+    const auto m = io::to_motion_double(file);
+    const auto back = io::to_motion_double(io::parse_motion(io::parse_json(io::motion_to_json(m, file.method).dump(), "rt"), "rt"));
+    EXPECT_EQ(back.curve.knots(), m.curve.knots());
+    for (std::size_t i = 0; i < m.curve.ctrl().size(); ++i) EXPECT_EQ(back.curve.ctrl()[i], m.curve.ctrl()[i]);
+    // Exact: non-dyadic rationals survive as "p/q" strings.
+    auto e = io::to_motion_exact(file);
+    auto ctrl = e.curve.ctrl();
+    ctrl[1] = ctrl[1] * (kernel::Rational(1) / kernel::Rational(3));
+    const kernel::QMotion<kernel::Rational> e3{e.basis, kernel::BSpline<kernel::DualQuaternion<kernel::Rational>>::make(e.degree(), e.curve.knots(), ctrl)};
+    const auto eback = io::to_motion_exact(io::parse_motion(io::parse_json(io::motion_to_json(e3, nullptr).dump(), "rt"), "rt"));
+    for (std::size_t i = 0; i < ctrl.size(); ++i) EXPECT_EQ(eback.curve.ctrl()[i], ctrl[i]);
+  }
+}
+
+TEST(MotionJson, EveryBadMotionIsRefusedWithItsReason) {
+  const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
+      {"wrong_type.json", {"type"}},
+      {"bad_basis.json", {"basis"}},
+      {"negative_degree.json", {"degree"}},
+      {"wrong_count.json", {"needs 4 control points"}},
+      {"seven_numbers.json", {"control_points[1]", "expected 8"}},
+      {"range_reversed.json", {"param_range"}},
+      {"range_mismatch.json", {"param_range", "knot"}},
+      {"zero_real_part.json", {"rotational"}},
+      {"bspline_no_knots.json", {"knots"}},
+      {"bspline_bad_knots.json", {"knots", "decrease"}},
+      {"missing_control_points.json", {"control_points"}},
+      {"nan_string.json", {"control_points[1][3]", "finite"}},
+      {"quaternion_spline.json", {"quaternion-spline"}},
+  };
+  for (const auto& [name, needles] : cases) {
+    const std::string path = kData + "/bad_motions/" + name;
+    try {
+      io::read_motion(path);
+      ADD_FAILURE() << name << " was accepted";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.code(), Errc::invalid_input) << name;
+      EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+      for (const auto& n : needles) EXPECT_NE(std::string(e.what()).find(n), std::string::npos) << e.what() << " lacks " << n;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace qmotion::test

@@ -1,0 +1,132 @@
+// tests/io/poses_test.cpp mirrors io/poses.hpp
+#include "io/poses.hpp"
+
+#include <cmath>
+
+#include "io/exact_number.hpp"
+#include "io_test_util.hpp"
+
+namespace qmotion::test {
+namespace {
+
+const std::string kData = QMOTION_TEST_DATA;
+
+TEST(Poses, SharedSamplesReadWithEveryRotationForm) {
+  const auto set = io::read_poses(shared_data("poses/five_positions.json"));
+  ASSERT_EQ(set.poses.size(), 5u);
+  EXPECT_TRUE(set.has_t());
+  EXPECT_EQ(set.units, "mm");
+  const auto P = io::to_poses_double(set);
+  // Pose 1: 45 degrees about z.
+  EXPECT_NEAR(P[1].rotation.w(), std::cos(M_PI / 8), 1e-15);
+  EXPECT_NEAR(P[1].rotation.z(), std::sin(M_PI / 8), 1e-15);
+  // Pose 2: 80 degrees about (1,1,0)/sqrt2: the axis is kept.
+  EXPECT_NEAR(P[2].rotation.x(), P[2].rotation.y(), 1e-15);
+  EXPECT_NEAR(P[2].rotation.w(), std::cos(40 * M_PI / 180), 1e-15);
+  for (const auto& p : P) EXPECT_NEAR(p.rotation.norm2(), 1.0, 1e-12);
+  // The pose's dual quaternion maps the origin to the position.
+  const auto s = kernel::translation_vector(P[3].dual_quaternion());
+  EXPECT_NEAR((s - Eigen::Vector3d(90, 80, 10)).norm(), 0.0, 1e-12);
+
+  const auto no_t = io::read_poses(shared_data("poses/three_positions_no_t.json"));
+  EXPECT_FALSE(no_t.has_t());
+  EXPECT_EQ(io::read_poses(shared_data("poses/helix_40.json")).poses.size(), 40u);
+}
+
+TEST(Poses, RationalStringsAreKeptExactly) {
+  const auto set = io::read_poses(shared_data("poses/rational_exact.json"));
+  ASSERT_EQ(set.poses.size(), 4u);
+  EXPECT_EQ(io::exact_from_text(set.poses[1].t->text), kernel::Rational(1) / kernel::Rational(3));
+  EXPECT_EQ(io::exact_from_text(set.poses[3].position[2].text), kernel::Rational(1) / kernel::Rational(7));
+  EXPECT_EQ(set.poses[2].rotation.values[0].text, "2");
+}
+
+TEST(Poses, MatrixRotationsMatchTheirQuaternion) {
+  const nlohmann::json m = {{std::cos(0.3) / std::cos(0.3), 0.0, 0.0},
+                            {0.0, std::cos(0.3), -std::sin(0.3)},
+                            {0.0, std::sin(0.3), std::cos(0.3)}};
+  const std::string text = R"({"poses":[{"position":[0,0,0],"rotation":{"matrix":)" + m.dump() +
+                           R"(}},{"position":[1,0,0],"rotation":{"quaternion":[1,0,0,0]}}]})";
+  const auto P = io::to_poses_double(io::parse_poses_json(text, "m.json"));
+  EXPECT_NEAR(P[0].rotation.w(), std::cos(0.15), 1e-15);
+  EXPECT_NEAR(P[0].rotation.x(), std::sin(0.15), 1e-15);
+  EXPECT_NEAR(P[0].rotation.norm2(), 1.0, 1e-15);
+}
+
+TEST(Poses, CsvWithAndWithoutT) {
+  const auto set = io::read_poses(kData + "/good_poses.csv");
+  ASSERT_EQ(set.poses.size(), 3u);
+  EXPECT_TRUE(set.has_t());
+  const auto P = io::to_poses_double(set);
+  EXPECT_EQ(P[2].position, Eigen::Vector3d(10, 10, 5));
+  EXPECT_NEAR(P[1].rotation.w(), 0.5, 1e-15);
+  const auto no_t = io::parse_poses_csv("x,y,z,qw,qx,qy,qz\n0,0,0,1,0,0,0\n1,2,3,0,1,0,0\n", "n.csv");
+  EXPECT_FALSE(no_t.has_t());
+}
+
+TEST(Poses, JsonRoundTripKeepsEveryNumber) {
+  for (const std::string f : {"poses/five_positions.json", "poses/rational_exact.json", "poses/three_positions_no_t.json"}) {
+    const auto a = io::read_poses(shared_data(f));
+    const auto b = io::parse_poses_json(io::poses_to_json(a).dump(), "roundtrip");
+    ASSERT_EQ(a.poses.size(), b.poses.size());
+    for (std::size_t i = 0; i < a.poses.size(); ++i) {
+      EXPECT_EQ(a.poses[i].t.has_value(), b.poses[i].t.has_value());
+      if (a.poses[i].t) {
+        EXPECT_EQ(io::exact_from_text(a.poses[i].t->text), io::exact_from_text(b.poses[i].t->text));
+      }
+      for (int k = 0; k < 3; ++k)
+        EXPECT_EQ(io::exact_from_text(a.poses[i].position[k].text), io::exact_from_text(b.poses[i].position[k].text));
+      ASSERT_EQ(a.poses[i].rotation.values.size(), b.poses[i].rotation.values.size());
+      for (std::size_t k = 0; k < a.poses[i].rotation.values.size(); ++k)
+        EXPECT_EQ(io::exact_from_text(a.poses[i].rotation.values[k].text), io::exact_from_text(b.poses[i].rotation.values[k].text));
+    }
+  }
+}
+
+struct BadCase {
+  std::string file;
+  std::vector<std::string> needles;
+};
+
+TEST(Poses, EveryBadInputIsRefusedWithItsReason) {
+  const std::vector<BadCase> cases = {
+      {shared_data("poses/bad/bad_decreasing_t.json"), {"pose 2", "increase"}},
+      {shared_data("poses/bad/bad_nan.json"), {"NaN"}},
+      {shared_data("poses/bad/bad_single_pose.json"), {"at least two poses"}},
+      {shared_data("poses/bad/bad_zero_quaternion.json"), {"pose 1", "zero quaternion"}},
+      {kData + "/bad_poses/malformed.json", {"invalid JSON", "line 1"}},
+      {kData + "/bad_poses/missing_position.json", {"pose 1", "position"}},
+      {kData + "/bad_poses/missing_rotation.json", {"pose 1", "rotation"}},
+      {kData + "/bad_poses/string_nan.json", {"poses[1].position[1]", "finite"}},
+      {kData + "/bad_poses/infinity.json", {"line 1, column", "1e999", "range"}},
+      {kData + "/bad_poses/equal_t.json", {"pose 2", "increase"}},
+      {kData + "/bad_poses/mixed_t.json", {"pose 1", "every pose or for none"}},
+      {kData + "/bad_poses/bad_matrix.json", {"pose 1", "not orthogonal"}},
+      {kData + "/bad_poses/reflection.json", {"pose 1", "reflection"}},
+      {kData + "/bad_poses/zero_axis.json", {"pose 1", "axis"}},
+      {kData + "/bad_poses/wrong_arity.json", {"poses[1].rotation.quaternion", "expected 4"}},
+      {kData + "/bad_poses/empty_poses.json", {"at least two poses", "found 0"}},
+      {kData + "/bad_poses/two_rotation_forms.json", {"pose 1", "only one"}},
+      {kData + "/bad_poses/bad_units.json", {"units"}},
+      {kData + "/bad_poses/bad_rational.json", {"poses[1].t", "zero denominator"}},
+      {kData + "/bad_poses/bad_header.csv", {"line 1", "header"}},
+      {kData + "/bad_poses/short_row.csv", {"line 3", "pose 1", "expected 8"}},
+      {kData + "/bad_poses/not_number.csv", {"line 3", "'x'", "not a number"}},
+      {kData + "/bad_poses/zero_quaternion.csv", {"pose 1", "zero quaternion"}},
+      {kData + "/bad_poses/does_not_exist.json", {"does_not_exist.json", "cannot open"}},
+  };
+  for (const auto& c : cases) {
+    std::vector<std::string> needles = c.needles;
+    needles.push_back(c.file);  // every message names the file
+    try {
+      io::read_poses(c.file);
+      ADD_FAILURE() << c.file << " was accepted";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.code(), Errc::invalid_input) << c.file;
+      for (const auto& n : needles) EXPECT_NE(std::string(e.what()).find(n), std::string::npos) << e.what() << " lacks " << n;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace qmotion::test

@@ -1,0 +1,34 @@
+// tests/io_test_util.hpp: shared data folder and error-message checks for io tests.
+#pragma once
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <functional>
+#include <string>
+
+#include "kernel/error.hpp"
+
+namespace qmotion::test {
+
+/// The shared sample data folder (../shared/data), from QMOTION_SHARED_DATA.
+inline std::string shared_data(const std::string& rel) {
+  const char* d = std::getenv("QMOTION_SHARED_DATA");
+  return std::string(d ? d : "../shared/data") + "/" + rel;
+}
+
+/// Runs f, expecting a qmotion::Error with `code` whose message contains every needle.
+inline ::testing::AssertionResult throws_error(const std::function<void()>& f, Errc code,
+                                               std::initializer_list<std::string> needles) {
+  try {
+    f();
+  } catch (const Error& e) {
+    if (e.code() != code) return ::testing::AssertionFailure() << "wrong error kind: " << e.what();
+    const std::string msg = e.what();
+    for (const auto& n : needles)
+      if (msg.find(n) == std::string::npos) return ::testing::AssertionFailure() << "message '" << msg << "' lacks '" << n << "'";
+    return ::testing::AssertionSuccess();
+  }
+  return ::testing::AssertionFailure() << "no qmotion::Error thrown";
+}
+
+}  // namespace qmotion::test
