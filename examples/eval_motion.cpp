@@ -12,8 +12,9 @@ int main(int argc, char** argv) {
   }
   try {
     const auto motion = qmotion::io::to_motion_double(qmotion::io::read_motion(argv[1]));
-    std::cout << "degree " << motion.degree() << ", " << motion.segments() << " segment(s), Plucker residual "
-              << qmotion::kernel::plucker_residual(motion) << "\n";
+    std::cout << "degree " << motion.degree() << ", " << motion.segments()
+              << " segment(s), Plucker residual " << qmotion::kernel::plucker_residual(motion)
+              << "\n";
     for (int i = 0; i <= 10; ++i) {
       const double t = motion.a() + (motion.b() - motion.a()) * i / 10.0;
       const auto p = qmotion::kernel::translation_vector(qmotion::kernel::evaluate(motion, t));

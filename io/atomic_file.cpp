@@ -16,7 +16,8 @@ namespace qmotion::io {
 
 AtomicOutput::AtomicOutput(std::string path) : path_(std::move(path)) {
   if (path_.empty()) throw Error(Errc::invalid_input, "empty output path");
-  if (std::filesystem::is_directory(path_)) throw Error(Errc::invalid_input, path_ + ": is a directory, expected a file name");
+  if (std::filesystem::is_directory(path_))
+    throw Error(Errc::invalid_input, path_ + ": is a directory, expected a file name");
   std::random_device rd;
   temp_ = path_ + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(rd() % 1000000);
 }
@@ -38,7 +39,9 @@ void write_file_atomic(const std::string& path, const std::string& content) {
   AtomicOutput out(path);
   {
     std::ofstream f(out.temp_path(), std::ios::binary | std::ios::trunc);
-    if (!f) throw Error(Errc::invalid_input, path + ": cannot create output file: " + std::strerror(errno));
+    if (!f)
+      throw Error(Errc::invalid_input,
+                  path + ": cannot create output file: " + std::strerror(errno));
     f << content;
     f.flush();
     if (!f) throw Error(Errc::invalid_input, path + ": write failed: " + std::strerror(errno));

@@ -46,7 +46,8 @@ inline kernel::Rational exact_from_text(const std::string& text) {
     s.erase(dot, 1);
   }
   if (s.empty() || s == "-" || s == "+") s += "0";
-  if (exp10 < -100000 || exp10 > 100000) throw Error(Errc::invalid_input, "'" + text + "' has an exponent out of range");
+  if (exp10 < -100000 || exp10 > 100000)
+    throw Error(Errc::invalid_input, "'" + text + "' has an exponent out of range");
   Rational value = integer(s);
   const Rational ten(10);
   Rational scale(1);

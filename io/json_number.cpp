@@ -45,7 +45,8 @@ class TextPreservingSax : public nlohmann::json_sax<json> {
     stack_.pop_back();
     return true;
   }
-  bool parse_error(std::size_t pos, const std::string& last_token, const nlohmann::detail::exception& ex) override {
+  bool parse_error(std::size_t pos, const std::string& last_token,
+                   const nlohmann::detail::exception& ex) override {
     error_pos_ = pos;
     last_token_ = last_token;
     error_ = ex.what();
@@ -117,7 +118,9 @@ json parse_json(const std::string& text, const std::string& source) {
     if (tok.find("NaN") != std::string::npos || tok.find("nan") != std::string::npos ||
         tok.find("Inf") != std::string::npos || tok.find("inf") != std::string::npos ||
         (!tok.empty() && (tok.back() == 'N' || tok.back() == 'I'))) {
-      msg += ": NaN and Infinity are not numbers (JSON has no such literals; every number must be finite)";
+      msg +=
+          ": NaN and Infinity are not numbers (JSON has no such literals; every number must be "
+          "finite)";
     } else if (sax.error_.find("number overflow") != std::string::npos) {
       msg += ": number " + tok + " is out of the range of double";
     } else {
@@ -146,7 +149,9 @@ Number parse_number_text(const std::string& raw, const std::string& where) {
   if (std::regex_match(raw, m, decimal)) {
     const std::string t = m[1].str();
     const double v = std::strtod(t.c_str(), nullptr);
-    if (!std::isfinite(v)) throw Error(Errc::invalid_input, where + ": number '" + raw + "' is out of the range of double");
+    if (!std::isfinite(v))
+      throw Error(Errc::invalid_input,
+                  where + ": number '" + raw + "' is out of the range of double");
     return Number{t, v};
   }
   if (std::regex_match(raw, m, ratio)) {
@@ -159,14 +164,17 @@ Number parse_number_text(const std::string& raw, const std::string& where) {
 #else
     n.value = std::strtod(p.c_str(), nullptr) / std::strtod(q.c_str(), nullptr);
 #endif
-    if (!std::isfinite(n.value)) throw Error(Errc::invalid_input, where + ": number '" + raw + "' is out of the range of double");
+    if (!std::isfinite(n.value))
+      throw Error(Errc::invalid_input,
+                  where + ": number '" + raw + "' is out of the range of double");
     return n;
   }
   std::string lower = raw;
   for (auto& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   if (lower.find("nan") != std::string::npos || lower.find("inf") != std::string::npos)
     throw Error(Errc::invalid_input, where + ": '" + raw + "' is not a finite number");
-  throw Error(Errc::invalid_input, where + ": '" + raw + "' is not a number (expected e.g. 1.5, -2e3 or \"3/4\")");
+  throw Error(Errc::invalid_input,
+              where + ": '" + raw + "' is not a number (expected e.g. 1.5, -2e3 or \"3/4\")");
 }
 
 Number read_number(const json& j, const std::string& where) {
@@ -178,11 +186,14 @@ Number read_number(const json& j, const std::string& where) {
     return Number::from_double(v);
   }
   if (j.is_string()) return parse_number_text(j.get<std::string>(), where);
-  throw Error(Errc::invalid_input, where + ": expected a number, found " + std::string(j.type_name()));
+  throw Error(Errc::invalid_input,
+              where + ": expected a number, found " + std::string(j.type_name()));
 }
 
 const json& require(const json& j, const std::string& key, const std::string& where) {
-  if (!j.is_object()) throw Error(Errc::invalid_input, where + ": expected an object, found " + std::string(j.type_name()));
+  if (!j.is_object())
+    throw Error(Errc::invalid_input,
+                where + ": expected an object, found " + std::string(j.type_name()));
   const auto it = j.find(key);
   if (it == j.end()) throw Error(Errc::invalid_input, where + ": missing field '" + key + "'");
   return *it;

@@ -36,7 +36,8 @@ Number parse_number_text(const std::string& text, const std::string& where);
 Number read_number(const nlohmann::json& j, const std::string& where);
 
 /// Member `key` of object j, or throws naming `where` and the key.
-const nlohmann::json& require(const nlohmann::json& j, const std::string& key, const std::string& where);
+const nlohmann::json& require(const nlohmann::json& j, const std::string& key,
+                              const std::string& where);
 
 /// A JSON number for v that prints with round-trip precision (17 significant digits).
 nlohmann::json json_number(double v);

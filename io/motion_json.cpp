@@ -15,7 +15,8 @@ using json = nlohmann::json;
 std::vector<Number> read_numbers(const json& j, const std::string& where) {
   if (!j.is_array()) throw Error(Errc::invalid_input, where + ": expected an array of numbers");
   std::vector<Number> v;
-  for (std::size_t i = 0; i < j.size(); ++i) v.push_back(read_number(j[i], where + "[" + std::to_string(i) + "]"));
+  for (std::size_t i = 0; i < j.size(); ++i)
+    v.push_back(read_number(j[i], where + "[" + std::to_string(i) + "]"));
   return v;
 }
 
@@ -29,11 +30,13 @@ kernel::QMotion<Scalar> build_motion(const MotionFile& f, Conv conv) {
     for (int i = 0; i < 8; ++i) q[i] = conv(c[static_cast<std::size_t>(i)]);
     ctrl.push_back(q);
   }
-  return kernel::QMotion<Scalar>{f.basis, kernel::BSpline<kernel::DualQuaternion<Scalar>>::make(f.degree, std::move(knots), std::move(ctrl))};
+  return kernel::QMotion<Scalar>{f.basis, kernel::BSpline<kernel::DualQuaternion<Scalar>>::make(
+                                              f.degree, std::move(knots), std::move(ctrl))};
 }
 
 template <typename Scalar, typename NumOut>
-json motion_json(const kernel::QMotion<Scalar>& m, const json& method, const std::string& units, NumOut num) {
+json motion_json(const kernel::QMotion<Scalar>& m, const json& method, const std::string& units,
+                 NumOut num) {
   json ctrl = json::array();
   for (const auto& q : m.curve.ctrl()) {
     json c = json::array();
@@ -58,26 +61,36 @@ json motion_json(const kernel::QMotion<Scalar>& m, const json& method, const std
 MotionFile parse_motion(const json& doc, const std::string& source) {
   MotionFile f;
   f.source = source;
-  if (!doc.is_object()) throw Error(Errc::invalid_input, source + ": expected a JSON object (a motion file)");
+  if (!doc.is_object())
+    throw Error(Errc::invalid_input, source + ": expected a JSON object (a motion file)");
   const json& type = require(doc, "type", source);
   if (type == "quaternion-spline")
-    throw Error(Errc::invalid_input, source + ": type \"quaternion-spline\" (non-rational motion) is not supported by this command");
-  if (type != "q-motion") throw Error(Errc::invalid_input, source + ": type: expected \"q-motion\", found " + type.dump());
+    throw Error(
+        Errc::invalid_input,
+        source +
+            ": type \"quaternion-spline\" (non-rational motion) is not supported by this command");
+  if (type != "q-motion")
+    throw Error(Errc::invalid_input,
+                source + ": type: expected \"q-motion\", found " + type.dump());
   const json& basis = require(doc, "basis", source);
   if (basis == "bezier") {
     f.basis = kernel::Basis::bezier;
   } else if (basis == "bspline") {
     f.basis = kernel::Basis::bspline;
   } else {
-    throw Error(Errc::invalid_input, source + ": basis: expected \"bezier\" or \"bspline\", found " + basis.dump());
+    throw Error(Errc::invalid_input,
+                source + ": basis: expected \"bezier\" or \"bspline\", found " + basis.dump());
   }
   const json& degree = require(doc, "degree", source);
   if (!degree.is_number_integer() || degree.get<long long>() < 0 || degree.get<long long>() > 200)
-    throw Error(Errc::invalid_input, source + ": degree: expected an integer from 0 to 200, found " + degree.dump());
+    throw Error(Errc::invalid_input,
+                source + ": degree: expected an integer from 0 to 200, found " + degree.dump());
   f.degree = degree.get<int>();
   const auto range = read_numbers(require(doc, "param_range", source), source + ": param_range");
-  if (range.size() != 2) throw Error(Errc::invalid_input, source + ": param_range: expected [a, b]");
-  if (!(range[0].value < range[1].value)) throw Error(Errc::invalid_input, source + ": param_range: expected a < b");
+  if (range.size() != 2)
+    throw Error(Errc::invalid_input, source + ": param_range: expected [a, b]");
+  if (!(range[0].value < range[1].value))
+    throw Error(Errc::invalid_input, source + ": param_range: expected a < b");
   f.range = {range[0], range[1]};
   if (doc.contains("units")) {
     if (!doc["units"].is_string() || !is_known_unit(doc["units"].get<std::string>()))
@@ -85,12 +98,16 @@ MotionFile parse_motion(const json& doc, const std::string& source) {
     f.units = doc["units"].get<std::string>();
   }
   const json& ctrl = require(doc, "control_points", source);
-  if (!ctrl.is_array()) throw Error(Errc::invalid_input, source + ": control_points: expected an array");
+  if (!ctrl.is_array())
+    throw Error(Errc::invalid_input, source + ": control_points: expected an array");
   bool real_nonzero = false;
   for (std::size_t i = 0; i < ctrl.size(); ++i) {
     const std::string w = source + ": control_points[" + std::to_string(i) + "]";
     const auto v = read_numbers(ctrl[i], w);
-    if (v.size() != 8) throw Error(Errc::invalid_input, w + ": expected 8 numbers (w,x,y,z, eps w,eps x,eps y,eps z), found " + std::to_string(v.size()));
+    if (v.size() != 8)
+      throw Error(Errc::invalid_input,
+                  w + ": expected 8 numbers (w,x,y,z, eps w,eps x,eps y,eps z), found " +
+                      std::to_string(v.size()));
     std::array<Number, 8> c;
     std::copy(v.begin(), v.end(), c.begin());
     for (std::size_t k = 0; k < 4; ++k) real_nonzero = real_nonzero || c[k].value != 0.0;
@@ -103,11 +120,13 @@ MotionFile parse_motion(const json& doc, const std::string& source) {
     f.knots.assign(static_cast<std::size_t>(f.degree + 1), f.range[0]);
     f.knots.insert(f.knots.end(), static_cast<std::size_t>(f.degree + 1), f.range[1]);
   } else {
-    throw Error(Errc::invalid_input, source + ": missing field 'knots' (required for a bspline motion)");
+    throw Error(Errc::invalid_input,
+                source + ": missing field 'knots' (required for a bspline motion)");
   }
   if (f.basis == kernel::Basis::bezier && n != static_cast<std::size_t>(f.degree + 1))
-    throw Error(Errc::invalid_input, source + ": a Bezier motion of degree " + std::to_string(f.degree) + " needs " +
-                                         std::to_string(f.degree + 1) + " control points, found " + std::to_string(n));
+    throw Error(Errc::invalid_input,
+                source + ": a Bezier motion of degree " + std::to_string(f.degree) + " needs " +
+                    std::to_string(f.degree + 1) + " control points, found " + std::to_string(n));
   std::vector<double> kv;
   for (const auto& k : f.knots) kv.push_back(k.value);
   const auto issues = kernel::BSpline<double>::validate(f.degree, kv, n);
@@ -115,10 +134,16 @@ MotionFile parse_motion(const json& doc, const std::string& source) {
   if (f.basis == kernel::Basis::bezier && (kv.size() != 2 * n || kv[n - 1] != kv.front()))
     throw Error(Errc::invalid_input, source + ": knots: a Bezier motion has no interior knots");
   for (std::size_t i = f.degree + 1; i + f.degree + 1 < kv.size(); ++i)
-    if (kv[i] == kv[i + f.degree]) throw Error(Errc::invalid_input, source + ": knots: knot " + f.knots[i].text + " has multiplicity above the degree (the motion would be discontinuous)");
+    if (kv[i] == kv[i + f.degree])
+      throw Error(Errc::invalid_input,
+                  source + ": knots: knot " + f.knots[i].text +
+                      " has multiplicity above the degree (the motion would be discontinuous)");
   if (kv.front() != range[0].value || kv.back() != range[1].value)
-    throw Error(Errc::invalid_input, source + ": param_range [" + range[0].text + ", " + range[1].text + "] differs from the knot vector's ends");
-  if (!real_nonzero) throw Error(Errc::invalid_input, source + ": control_points: the rotational (real) part is zero everywhere");
+    throw Error(Errc::invalid_input, source + ": param_range [" + range[0].text + ", " +
+                                         range[1].text + "] differs from the knot vector's ends");
+  if (!real_nonzero)
+    throw Error(Errc::invalid_input,
+                source + ": control_points: the rotational (real) part is zero everywhere");
   if (doc.contains("method")) f.method = doc["method"];
   return f;
 }
@@ -129,7 +154,8 @@ kernel::QMotion<double> to_motion_double(const MotionFile& f) {
   return build_motion<double>(f, [](const Number& n) { return n.value; });
 }
 
-json motion_to_json(const kernel::QMotion<double>& m, const json& method, const std::string& units) {
+json motion_to_json(const kernel::QMotion<double>& m, const json& method,
+                    const std::string& units) {
   return motion_json(m, method, units, [](double v) { return json(v); });
 }
 
@@ -138,8 +164,10 @@ kernel::QMotion<kernel::Rational> to_motion_exact(const MotionFile& f) {
   return build_motion<kernel::Rational>(f, [](const Number& n) { return exact_from_text(n.text); });
 }
 
-json motion_to_json(const kernel::QMotion<kernel::Rational>& m, const json& method, const std::string& units) {
-  return motion_json(m, method, units, [](const kernel::Rational& v) { return json(exact_to_text(v)); });
+json motion_to_json(const kernel::QMotion<kernel::Rational>& m, const json& method,
+                    const std::string& units) {
+  return motion_json(m, method, units,
+                     [](const kernel::Rational& v) { return json(exact_to_text(v)); });
 }
 #endif
 

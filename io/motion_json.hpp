@@ -44,8 +44,8 @@ nlohmann::json motion_to_json(const kernel::QMotion<double>& m, const nlohmann::
 /// The motion read exactly (every decimal and "p/q" as the rational it denotes).
 kernel::QMotion<kernel::Rational> to_motion_exact(const MotionFile& f);
 /// A motion file document with every number an exact "p/q" string.
-nlohmann::json motion_to_json(const kernel::QMotion<kernel::Rational>& m, const nlohmann::json& method,
-                              const std::string& units = "mm");
+nlohmann::json motion_to_json(const kernel::QMotion<kernel::Rational>& m,
+                              const nlohmann::json& method, const std::string& units = "mm");
 #endif
 
 }  // namespace qmotion::io

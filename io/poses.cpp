@@ -1,12 +1,11 @@
 // io/poses.cpp
 #include "io/poses.hpp"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <sstream>
-
-#include <Eigen/Dense>
 
 #include "kernel/error.hpp"
 #include "kernel/quaternion.hpp"
@@ -17,7 +16,8 @@ namespace {
 using json = nlohmann::json;
 
 std::string pose_where(const std::string& source, std::size_t i, const std::string& field) {
-  return source + ": pose " + std::to_string(i) + " (poses[" + std::to_string(i) + "]" + (field.empty() ? "" : "." + field) + ")";
+  return source + ": pose " + std::to_string(i) + " (poses[" + std::to_string(i) + "]" +
+         (field.empty() ? "" : "." + field) + ")";
 }
 
 /// Where a field of pose i is: "file: pose i (poses[i].field)".
@@ -26,14 +26,21 @@ struct Where {
   std::size_t pose;
   std::string field;
   std::string str() const { return pose_where(source, pose, field); }
-  Where operator/(const std::string& sub) const { return Where{source, pose, field.empty() ? sub : field + "." + sub}; }
-  Where at(std::size_t k) const { return Where{source, pose, field + "[" + std::to_string(k) + "]"}; }
+  Where operator/(const std::string& sub) const {
+    return Where{source, pose, field.empty() ? sub : field + "." + sub};
+  }
+  Where at(std::size_t k) const {
+    return Where{source, pose, field + "[" + std::to_string(k) + "]"};
+  }
 };
 
 std::vector<Number> read_numbers(const json& j, std::size_t count, const Where& where) {
-  if (!j.is_array()) throw Error(Errc::invalid_input, where.str() + ": expected an array of " + std::to_string(count) + " numbers");
+  if (!j.is_array())
+    throw Error(Errc::invalid_input,
+                where.str() + ": expected an array of " + std::to_string(count) + " numbers");
   if (j.size() != count)
-    throw Error(Errc::invalid_input, where.str() + ": expected " + std::to_string(count) + " numbers, found " + std::to_string(j.size()));
+    throw Error(Errc::invalid_input, where.str() + ": expected " + std::to_string(count) +
+                                         " numbers, found " + std::to_string(j.size()));
   std::vector<Number> out;
   for (std::size_t k = 0; k < count; ++k) out.push_back(read_number(j[k], where.at(k).str()));
   return out;
@@ -46,8 +53,11 @@ void validate_rotation(const RotationInput& r, const Where& w) {
     case RotationInput::Kind::quaternion: {
       double n = 0;
       for (const auto& v : r.values) n += v.value * v.value;
-      if (!(n > 0)) throw Error(Errc::invalid_input, (w / "quaternion").str() + ": the zero quaternion is not a rotation");
-      if (!std::isfinite(n)) throw Error(Errc::invalid_input, (w / "quaternion").str() + ": components too large");
+      if (!(n > 0))
+        throw Error(Errc::invalid_input,
+                    (w / "quaternion").str() + ": the zero quaternion is not a rotation");
+      if (!std::isfinite(n))
+        throw Error(Errc::invalid_input, (w / "quaternion").str() + ": components too large");
       break;
     }
     case RotationInput::Kind::matrix: {
@@ -55,14 +65,19 @@ void validate_rotation(const RotationInput& r, const Where& w) {
       for (int i = 0; i < 9; ++i) m(i / 3, i % 3) = r.values[static_cast<std::size_t>(i)].value;
       const double err = (m.transpose() * m - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
       if (!(err <= 1e-6))
-        throw Error(Errc::invalid_input, (w / "matrix").str() + ": not orthogonal (|M^T M - I| = " + std::to_string(err) + " > 1e-6)");
+        throw Error(Errc::invalid_input, (w / "matrix").str() + ": not orthogonal (|M^T M - I| = " +
+                                             std::to_string(err) + " > 1e-6)");
       if (!(m.determinant() > 0))
-        throw Error(Errc::invalid_input, (w / "matrix").str() + ": determinant is negative (a reflection, not a rotation)");
+        throw Error(
+            Errc::invalid_input,
+            (w / "matrix").str() + ": determinant is negative (a reflection, not a rotation)");
       break;
     }
     case RotationInput::Kind::axis_angle: {
       const double n = std::hypot(r.values[0].value, r.values[1].value, r.values[2].value);
-      if (!(n > 0)) throw Error(Errc::invalid_input, (w / "axis_angle.axis").str() + ": the zero vector is not an axis");
+      if (!(n > 0))
+        throw Error(Errc::invalid_input,
+                    (w / "axis_angle.axis").str() + ": the zero vector is not an axis");
       break;
     }
   }
@@ -71,25 +86,30 @@ void validate_rotation(const RotationInput& r, const Where& w) {
 void validate_set(PoseSet& set) {
   const auto& P = set.poses;
   if (P.size() < 2)
-    throw Error(Errc::invalid_input,
-                set.source + ": needs at least two poses to interpolate, found " + std::to_string(P.size()));
+    throw Error(Errc::invalid_input, set.source +
+                                         ": needs at least two poses to interpolate, found " +
+                                         std::to_string(P.size()));
   const bool first_t = P.front().t.has_value();
   for (std::size_t i = 0; i < P.size(); ++i) {
     if (P[i].t.has_value() != first_t)
-      throw Error(Errc::invalid_input, pose_where(set.source, i, "t") + ": t must be given for every pose or for none" +
+      throw Error(Errc::invalid_input, pose_where(set.source, i, "t") +
+                                           ": t must be given for every pose or for none" +
                                            (first_t ? " (missing here)" : " (pose 0 has none)"));
     validate_rotation(P[i].rotation, Where{set.source, i, "rotation"});
   }
   if (first_t)
     for (std::size_t i = 1; i < P.size(); ++i)
       if (!(P[i].t->value > P[i - 1].t->value))
-        throw Error(Errc::invalid_input, pose_where(set.source, i, "t") + ": parameters must increase strictly, but t = " +
+        throw Error(Errc::invalid_input, pose_where(set.source, i, "t") +
+                                             ": parameters must increase strictly, but t = " +
                                              P[i].t->text + " follows t = " + P[i - 1].t->text);
 }
 
 RotationInput read_rotation(const json& r, const Where& w) {
   const std::string where = w.str();
-  if (!r.is_object()) throw Error(Errc::invalid_input, where + ": expected an object with quaternion, matrix or axis_angle");
+  if (!r.is_object())
+    throw Error(Errc::invalid_input,
+                where + ": expected an object with quaternion, matrix or axis_angle");
   RotationInput out;
   int forms = 0;
   if (r.contains("quaternion")) {
@@ -100,7 +120,8 @@ RotationInput read_rotation(const json& r, const Where& w) {
   if (r.contains("matrix")) {
     ++forms;
     const json& m = r["matrix"];
-    if (!m.is_array() || m.size() != 3) throw Error(Errc::invalid_input, (w / "matrix").str() + ": expected 3 rows of 3 numbers");
+    if (!m.is_array() || m.size() != 3)
+      throw Error(Errc::invalid_input, (w / "matrix").str() + ": expected 3 rows of 3 numbers");
     out.kind = RotationInput::Kind::matrix;
     out.values.clear();
     for (std::size_t i = 0; i < 3; ++i) {
@@ -116,8 +137,10 @@ RotationInput read_rotation(const json& r, const Where& w) {
     out.values = read_numbers(require(aa, "axis", aw.str()), 3, aw / "axis");
     out.values.push_back(read_number(require(aa, "angle_deg", aw.str()), (aw / "angle_deg").str()));
   }
-  if (forms == 0) throw Error(Errc::invalid_input, where + ": needs one of quaternion, matrix, axis_angle");
-  if (forms > 1) throw Error(Errc::invalid_input, where + ": give only one of quaternion, matrix, axis_angle");
+  if (forms == 0)
+    throw Error(Errc::invalid_input, where + ": needs one of quaternion, matrix, axis_angle");
+  if (forms > 1)
+    throw Error(Errc::invalid_input, where + ": give only one of quaternion, matrix, axis_angle");
   return out;
 }
 
@@ -130,7 +153,8 @@ bool is_known_unit(const std::string& u) {
 PoseSet parse_poses_json_value(const json& doc, const std::string& source) {
   PoseSet set;
   set.source = source;
-  if (!doc.is_object()) throw Error(Errc::invalid_input, source + ": expected a JSON object with a 'poses' array");
+  if (!doc.is_object())
+    throw Error(Errc::invalid_input, source + ": expected a JSON object with a 'poses' array");
   if (doc.contains("units")) {
     if (!doc["units"].is_string() || !is_known_unit(doc["units"].get<std::string>()))
       throw Error(Errc::invalid_input, source + ": units: expected one of mm, cm, m, in, ft, um");
@@ -143,7 +167,8 @@ PoseSet parse_poses_json_value(const json& doc, const std::string& source) {
     const std::string where = pose_where(source, i, "");
     if (!p.is_object()) throw Error(Errc::invalid_input, where + ": expected an object");
     PoseInput in;
-    if (p.contains("t") && !p["t"].is_null()) in.t = read_number(p["t"], pose_where(source, i, "t"));
+    if (p.contains("t") && !p["t"].is_null())
+      in.t = read_number(p["t"], pose_where(source, i, "t"));
     const auto pos = read_numbers(require(p, "position", where), 3, Where{source, i, "position"});
     std::copy(pos.begin(), pos.end(), in.position.begin());
     in.rotation = read_rotation(require(p, "rotation", where), Where{source, i, "rotation"});
@@ -178,7 +203,9 @@ PoseSet parse_poses_csv(const std::string& text, const std::string& source) {
   while (std::getline(in, line)) {
     ++line_no;
     if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.find_first_not_of(" \t") == std::string::npos || line[line.find_first_not_of(" \t")] == '#') continue;
+    if (line.find_first_not_of(" \t") == std::string::npos ||
+        line[line.find_first_not_of(" \t")] == '#')
+      continue;
     const auto cells = split(line);
     const std::string where = source + ": line " + std::to_string(line_no);
     if (header.empty()) {
@@ -186,15 +213,19 @@ PoseSet parse_poses_csv(const std::string& text, const std::string& source) {
       const std::vector<std::string> with_t = {"t", "x", "y", "z", "qw", "qx", "qy", "qz"};
       const std::vector<std::string> without_t(with_t.begin() + 1, with_t.end());
       if (header != with_t && header != without_t)
-        throw Error(Errc::invalid_input, where + ": header must be 't,x,y,z,qw,qx,qy,qz' (t optional), found '" + line + "'");
+        throw Error(
+            Errc::invalid_input,
+            where + ": header must be 't,x,y,z,qw,qx,qy,qz' (t optional), found '" + line + "'");
       continue;
     }
     if (cells.size() != header.size())
-      throw Error(Errc::invalid_input, where + " (pose " + std::to_string(set.poses.size()) + "): expected " +
-                                           std::to_string(header.size()) + " values, found " + std::to_string(cells.size()));
+      throw Error(Errc::invalid_input, where + " (pose " + std::to_string(set.poses.size()) +
+                                           "): expected " + std::to_string(header.size()) +
+                                           " values, found " + std::to_string(cells.size()));
     std::vector<Number> v;
     for (std::size_t k = 0; k < cells.size(); ++k)
-      v.push_back(parse_number_text(cells[k], where + ", column '" + header[k] + "' (pose " + std::to_string(set.poses.size()) + ")"));
+      v.push_back(parse_number_text(cells[k], where + ", column '" + header[k] + "' (pose " +
+                                                  std::to_string(set.poses.size()) + ")"));
     PoseInput p;
     std::size_t o = 0;
     if (header.size() == 8) p.t = v[o++];
@@ -203,7 +234,9 @@ PoseSet parse_poses_csv(const std::string& text, const std::string& source) {
     p.rotation.values.assign(v.begin() + static_cast<std::ptrdiff_t>(o), v.end());
     set.poses.push_back(std::move(p));
   }
-  if (header.empty()) throw Error(Errc::invalid_input, source + ": empty CSV file (expected the header t,x,y,z,qw,qx,qy,qz)");
+  if (header.empty())
+    throw Error(Errc::invalid_input,
+                source + ": empty CSV file (expected the header t,x,y,z,qw,qx,qy,qz)");
   validate_set(set);
   return set;
 }
@@ -226,18 +259,21 @@ std::vector<Pose<double>> to_poses_double(const PoseSet& set) {
     const auto& v = p.rotation.values;
     switch (p.rotation.kind) {
       case RotationInput::Kind::quaternion:
-        q.rotation = kernel::normalized(kernel::Quaternion<double>(v[0].value, v[1].value, v[2].value, v[3].value));
+        q.rotation = kernel::normalized(
+            kernel::Quaternion<double>(v[0].value, v[1].value, v[2].value, v[3].value));
         break;
       case RotationInput::Kind::matrix: {
         Eigen::Matrix3d m;
         for (int i = 0; i < 9; ++i) m(i / 3, i % 3) = v[static_cast<std::size_t>(i)].value;
         // Project to the nearest rotation first (the file may round its entries).
         Eigen::JacobiSVD<Eigen::Matrix3d> svd(m, Eigen::ComputeFullU | Eigen::ComputeFullV);
-        q.rotation = kernel::from_rotation_matrix(Eigen::Matrix3d(svd.matrixU() * svd.matrixV().transpose()));
+        q.rotation = kernel::from_rotation_matrix(
+            Eigen::Matrix3d(svd.matrixU() * svd.matrixV().transpose()));
         break;
       }
       case RotationInput::Kind::axis_angle:
-        q.rotation = kernel::from_axis_angle(Eigen::Vector3d(v[0].value, v[1].value, v[2].value), v[3].value * M_PI / 180.0);
+        q.rotation = kernel::from_axis_angle(Eigen::Vector3d(v[0].value, v[1].value, v[2].value),
+                                             v[3].value * M_PI / 180.0);
         break;
     }
     out.push_back(q);
@@ -249,7 +285,9 @@ json poses_to_json(const PoseSet& set) {
   // A decimal of at most 15 digits survives the trip through double (shortest round-trip
   // printing); anything longer, and every "p/q", keeps its text as a string.
   auto num = [](const Number& n) -> json {
-    const auto digits = std::count_if(n.text.begin(), n.text.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); });
+    const auto digits = std::count_if(n.text.begin(), n.text.end(), [](char c) {
+      return std::isdigit(static_cast<unsigned char>(c));
+    });
     if (n.text.find('/') != std::string::npos || digits > 15) return n.text;
     return n.value;
   };
@@ -265,10 +303,12 @@ json poses_to_json(const PoseSet& set) {
         j["rotation"]["quaternion"] = vals;
         break;
       case RotationInput::Kind::matrix:
-        j["rotation"]["matrix"] = {{vals[0], vals[1], vals[2]}, {vals[3], vals[4], vals[5]}, {vals[6], vals[7], vals[8]}};
+        j["rotation"]["matrix"] = {
+            {vals[0], vals[1], vals[2]}, {vals[3], vals[4], vals[5]}, {vals[6], vals[7], vals[8]}};
         break;
       case RotationInput::Kind::axis_angle:
-        j["rotation"]["axis_angle"] = {{"axis", {vals[0], vals[1], vals[2]}}, {"angle_deg", vals[3]}};
+        j["rotation"]["axis_angle"] = {{"axis", {vals[0], vals[1], vals[2]}},
+                                       {"angle_deg", vals[3]}};
         break;
     }
     poses.push_back(j);

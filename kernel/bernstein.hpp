@@ -105,7 +105,8 @@ Bernstein<Coef> restrict_to(const Bernstein<Coef>& p, const coef_scalar_t<Coef>&
 template <typename Coef>
 std::pair<Bernstein<Coef>, Bernstein<Coef>> subdivide(const Bernstein<Coef>& p,
                                                       const coef_scalar_t<Coef>& t) {
-  if (!(p.a() < t && t < p.b())) throw Error(Errc::invalid_input, "subdivision parameter outside the open interval");
+  if (!(p.a() < t && t < p.b()))
+    throw Error(Errc::invalid_input, "subdivision parameter outside the open interval");
   using S = coef_scalar_t<Coef>;
   const S s = p.local(t);
   std::vector<Coef> c = p.coeffs();
@@ -143,7 +144,8 @@ Bernstein<Coef> elevate(const Bernstein<Coef>& p, int r = 1) {
     e.back() = c.back();
     for (int i = 1; i < n1; ++i) {
       const S w = S(S(i) / S(n1));
-      e[static_cast<std::size_t>(i)] = detail::lerp(c[static_cast<std::size_t>(i)], c[static_cast<std::size_t>(i - 1)], w);
+      e[static_cast<std::size_t>(i)] =
+          detail::lerp(c[static_cast<std::size_t>(i)], c[static_cast<std::size_t>(i - 1)], w);
     }
     c = std::move(e);
   }
@@ -163,7 +165,8 @@ auto map_coeffs(const Bernstein<Coef>& p, F&& f) {
 /// Sum of two polynomials on the same interval (the lower degree is elevated).
 template <typename Coef>
 Bernstein<Coef> operator+(const Bernstein<Coef>& p, const Bernstein<Coef>& q) {
-  if (p.a() != q.a() || p.b() != q.b()) throw Error(Errc::invalid_input, "sum of polynomials on different intervals");
+  if (p.a() != q.a() || p.b() != q.b())
+    throw Error(Errc::invalid_input, "sum of polynomials on different intervals");
   if (p.degree() < q.degree()) return elevate(p, q.degree() - p.degree()) + q;
   if (q.degree() < p.degree()) return p + elevate(q, p.degree() - q.degree());
   std::vector<Coef> c = p.coeffs();
@@ -193,7 +196,8 @@ template <typename A, typename B, typename Op = RingMul>
 auto product(const Bernstein<A>& p, const Bernstein<B>& q, Op op = {}) {
   using R = std::decay_t<decltype(op(p[0], q[0]))>;
   using S = coef_scalar_t<R>;
-  if (p.a() != q.a() || p.b() != q.b()) throw Error(Errc::invalid_input, "product of polynomials on different intervals");
+  if (p.a() != q.a() || p.b() != q.b())
+    throw Error(Errc::invalid_input, "product of polynomials on different intervals");
   const int k = p.degree(), l = q.degree();
   std::vector<S> bk, bl, bkl;
   for (int i = 0; i <= k; ++i) bk.push_back(binomial<S>(k, i));
@@ -202,7 +206,8 @@ auto product(const Bernstein<A>& p, const Bernstein<B>& q, Op op = {}) {
   std::vector<R> c(static_cast<std::size_t>(k + l + 1), coef_zero<R>());
   for (int i = 0; i <= k; ++i)
     for (int j = 0; j <= l; ++j) {
-      const S w = S(bk[static_cast<std::size_t>(i)] * bl[static_cast<std::size_t>(j)] / bkl[static_cast<std::size_t>(i + j)]);
+      const S w = S(bk[static_cast<std::size_t>(i)] * bl[static_cast<std::size_t>(j)] /
+                    bkl[static_cast<std::size_t>(i + j)]);
       c[static_cast<std::size_t>(i + j)] += scale(w, R(op(p[i], q[j])));
     }
   return Bernstein<R>(std::move(c), p.a(), p.b());
@@ -247,11 +252,12 @@ bool reduce_once(const Bernstein<Coef>& p, double rel_tol, Bernstein<Coef>& out)
   c[0] = p[0];
   for (int i = 1; i < half; ++i)
     c[static_cast<std::size_t>(i)] =
-        scale(S(S(1) / S(n - i)), Coef(scale(S(n), p[i]) - scale(S(i), c[static_cast<std::size_t>(i - 1)])));
+        scale(S(S(1) / S(n - i)),
+              Coef(scale(S(n), p[i]) - scale(S(i), c[static_cast<std::size_t>(i - 1)])));
   c[static_cast<std::size_t>(n - 1)] = p[n];
   for (int i = n - 1; i > half; --i)
-    c[static_cast<std::size_t>(i - 1)] =
-        scale(S(S(1) / S(i)), Coef(scale(S(n), p[i]) - scale(S(n - i), c[static_cast<std::size_t>(i)])));
+    c[static_cast<std::size_t>(i - 1)] = scale(
+        S(S(1) / S(i)), Coef(scale(S(n), p[i]) - scale(S(n - i), c[static_cast<std::size_t>(i)])));
   Bernstein<Coef> reduced(std::move(c), p.a(), p.b());
   // Confirm: elevating back must give p.
   const Bernstein<Coef> back = elevate(reduced);
@@ -276,7 +282,8 @@ Bernstein<Coef> reduce_degree(const Bernstein<Coef>& p,
 
 /// The true degree of p (its degree after reduce_degree).
 template <typename Coef>
-int exact_degree(const Bernstein<Coef>& p, double rel_tol = default_rel_tol<coef_scalar_t<Coef>>()) {
+int exact_degree(const Bernstein<Coef>& p,
+                 double rel_tol = default_rel_tol<coef_scalar_t<Coef>>()) {
   return reduce_degree(p, rel_tol).degree();
 }
 
@@ -294,7 +301,8 @@ Bernstein<CP> divide_exact(const Bernstein<CP>& p, const Bernstein<CF>& f, Side 
   using S = coef_scalar_t<CP>;
   const int n = p.degree(), df = f.degree(), g = n - df;
   if (g < 0) throw Error(Errc::numerical_failure, "divisor has a higher degree than the dividend");
-  if (p.a() != f.a() || p.b() != f.b()) throw Error(Errc::invalid_input, "division of polynomials on different intervals");
+  if (p.a() != f.a() || p.b() != f.b())
+    throw Error(Errc::invalid_input, "division of polynomials on different intervals");
   std::vector<CP> ph;
   std::vector<CF> fh;
   for (int i = 0; i <= n; ++i) ph.push_back(scale(binomial<S>(n, i), p[i]));
@@ -302,7 +310,8 @@ Bernstein<CP> divide_exact(const Bernstein<CP>& p, const Bernstein<CF>& f, Side 
   const double fscale = max_coeff_abs(f);
   const bool front_ok = !coef_negligible(fh.front(), fscale, 1e-8);
   const bool back_ok = !coef_negligible(fh.back(), fscale, 1e-8);
-  if (!front_ok && !back_ok) throw Error(Errc::numerical_failure, "divisor vanishes at both ends of the interval");
+  if (!front_ok && !back_ok)
+    throw Error(Errc::numerical_failure, "divisor vanishes at both ends of the interval");
   auto mul = [side](const CP& gg, const CF& ff) -> CP {
     if (side == Side::right) return ring_mul(gg, ff);
     return ring_mul(ff, gg);
@@ -317,7 +326,8 @@ Bernstein<CP> divide_exact(const Bernstein<CP>& p, const Bernstein<CF>& f, Side 
     const CF inv0 = coef_inverse(fh.front());
     for (int k = 0; k < split; ++k) {
       CP rhs = ph[static_cast<std::size_t>(k)];
-      for (int j = 1; j <= std::min(k, df); ++j) rhs -= mul(gh[static_cast<std::size_t>(k - j)], fh[static_cast<std::size_t>(j)]);
+      for (int j = 1; j <= std::min(k, df); ++j)
+        rhs -= mul(gh[static_cast<std::size_t>(k - j)], fh[static_cast<std::size_t>(j)]);
       gh[static_cast<std::size_t>(k)] = solve(rhs, inv0);
     }
   }
@@ -331,10 +341,12 @@ Bernstein<CP> divide_exact(const Bernstein<CP>& p, const Bernstein<CF>& f, Side 
     }
   }
   std::vector<CP> gc;
-  for (int i = 0; i <= g; ++i) gc.push_back(scale(S(S(1) / binomial<S>(g, i)), gh[static_cast<std::size_t>(i)]));
+  for (int i = 0; i <= g; ++i)
+    gc.push_back(scale(S(S(1) / binomial<S>(g, i)), gh[static_cast<std::size_t>(i)]));
   Bernstein<CP> quotient(std::move(gc), p.a(), p.b());
   // Verify the division: G * F (or F * G) must reproduce P.
-  const Bernstein<CP> back = side == Side::right ? Bernstein<CP>(product(quotient, f)) : Bernstein<CP>(product(f, quotient));
+  const Bernstein<CP> back = side == Side::right ? Bernstein<CP>(product(quotient, f))
+                                                 : Bernstein<CP>(product(f, quotient));
   const double ref = std::max(max_coeff_abs(p), 1e-300);
   for (int i = 0; i <= n; ++i)
     if (!coef_negligible(CP(back[i] - p[i]), ref, rel_tol == 0.0 ? 0.0 : rel_tol * 1e3))

@@ -12,7 +12,8 @@ namespace qmotion::kernel {
 
 /// B-spline function with coefficients in any ring of kernel/coefficient.hpp, on a clamped
 /// knot vector (poles + degree + 1 entries, first and last value degree+1 times, interior
-/// multiplicities at most degree+1: degree+1 is a break, which derivatives can need). A value class: the factory validates the invariant.
+/// multiplicities at most degree+1: degree+1 is a break, which derivatives can need). A value
+/// class: the factory validates the invariant.
 /// @see Piegl & Tiller, The NURBS Book, ch. 2-5; Ramshaw 1989 for blossoms
 template <typename Coef>
 class BSpline {
@@ -20,17 +21,21 @@ class BSpline {
   using Scalar = coef_scalar_t<Coef>;
 
   /// Readable problems with a (degree, knots, pole count) triple; empty when valid.
-  static std::vector<std::string> validate(int degree, const std::vector<Scalar>& knots, std::size_t poles) {
+  static std::vector<std::string> validate(int degree, const std::vector<Scalar>& knots,
+                                           std::size_t poles) {
     std::vector<std::string> issues;
     if (degree < 0) {
       issues.push_back("degree must be >= 0");
       return issues;
     }
     const std::size_t p = static_cast<std::size_t>(degree);
-    if (poles < p + 1) issues.push_back("needs at least degree+1 = " + std::to_string(p + 1) + " control points, has " + std::to_string(poles));
+    if (poles < p + 1)
+      issues.push_back("needs at least degree+1 = " + std::to_string(p + 1) +
+                       " control points, has " + std::to_string(poles));
     if (knots.size() != poles + p + 1) {
-      issues.push_back("knot vector has " + std::to_string(knots.size()) + " entries, expected control points + degree + 1 = " +
-                       std::to_string(poles + p + 1));
+      issues.push_back(
+          "knot vector has " + std::to_string(knots.size()) +
+          " entries, expected control points + degree + 1 = " + std::to_string(poles + p + 1));
       return issues;
     }
     for (std::size_t i = 1; i < knots.size(); ++i)
@@ -41,17 +46,20 @@ class BSpline {
     if (!issues.empty()) return issues;
     for (std::size_t i = 1; i <= p; ++i)
       if (knots[i] != knots[0] || knots[knots.size() - 1 - i] != knots.back()) {
-        issues.push_back("knot vector is not clamped (first and last knot must repeat degree+1 times)");
+        issues.push_back(
+            "knot vector is not clamped (first and last knot must repeat degree+1 times)");
         break;
       }
-    if (!(knots.front() < knots.back())) issues.push_back("knot vector spans an empty interval");
+    if (!(knots.front() < knots.back()))
+      issues.push_back("knot vector spans an empty interval");
     else if (knots[p + 1] == knots[0] || knots[knots.size() - p - 2] == knots.back())
       issues.push_back("end knots repeat more than degree+1 times");
     std::size_t run = 1;
     for (std::size_t i = p + 2; i + p + 1 < knots.size(); ++i) {
       run = knots[i] == knots[i - 1] ? run + 1 : 1;
       if (run > p + 1 && knots[i] != knots.back()) {
-        issues.push_back("interior knot at index " + std::to_string(i) + " has multiplicity above degree+1");
+        issues.push_back("interior knot at index " + std::to_string(i) +
+                         " has multiplicity above degree+1");
         break;
       }
     }
@@ -84,7 +92,8 @@ class BSpline {
     const int n = static_cast<int>(c_.size()) - 1;
     if (!(t < t_[static_cast<std::size_t>(n + 1)])) {
       int j = n;
-      while (j > p_ && !(t_[static_cast<std::size_t>(j)] < t_[static_cast<std::size_t>(j + 1)])) --j;
+      while (j > p_ && !(t_[static_cast<std::size_t>(j)] < t_[static_cast<std::size_t>(j + 1)]))
+        --j;
       return j;
     }
     const auto it = std::upper_bound(t_.begin() + p_, t_.begin() + n + 1, t);
@@ -124,8 +133,10 @@ Coef blossom(const BSpline<Coef>& s, int j, const std::vector<coef_scalar_t<Coef
   for (int r = 1; r <= p; ++r)
     for (int i = p; i >= r; --i) {
       const std::size_t idx = static_cast<std::size_t>(j - p + i);
-      const S alpha = S((u[static_cast<std::size_t>(r - 1)] - T[idx]) / (T[idx + static_cast<std::size_t>(p + 1 - r)] - T[idx]));
-      d[static_cast<std::size_t>(i)] = detail::lerp(d[static_cast<std::size_t>(i - 1)], d[static_cast<std::size_t>(i)], alpha);
+      const S alpha = S((u[static_cast<std::size_t>(r - 1)] - T[idx]) /
+                        (T[idx + static_cast<std::size_t>(p + 1 - r)] - T[idx]));
+      d[static_cast<std::size_t>(i)] =
+          detail::lerp(d[static_cast<std::size_t>(i - 1)], d[static_cast<std::size_t>(i)], alpha);
     }
   return d[static_cast<std::size_t>(p)];
 }
@@ -133,7 +144,8 @@ Coef blossom(const BSpline<Coef>& s, int j, const std::vector<coef_scalar_t<Coef
 /// s(t) by de Boor's algorithm (exact for exact Scalar).
 template <typename Coef>
 Coef evaluate(const BSpline<Coef>& s, const coef_scalar_t<Coef>& t) {
-  return blossom(s, s.find_span(t), std::vector<coef_scalar_t<Coef>>(static_cast<std::size_t>(s.degree()), t));
+  return blossom(s, s.find_span(t),
+                 std::vector<coef_scalar_t<Coef>>(static_cast<std::size_t>(s.degree()), t));
 }
 
 /// Inserts the knot t (a < t < b) `times` times by Boehm's algorithm; the function is
@@ -141,8 +153,10 @@ Coef evaluate(const BSpline<Coef>& s, const coef_scalar_t<Coef>& t) {
 template <typename Coef>
 BSpline<Coef> insert_knot(const BSpline<Coef>& s, const coef_scalar_t<Coef>& t, int times = 1) {
   using S = coef_scalar_t<Coef>;
-  if (!(s.a() < t && t < s.b())) throw Error(Errc::invalid_input, "knot insertion outside the open parameter interval");
-  if (s.multiplicity(t) + times > s.degree() + 1) throw Error(Errc::invalid_input, "knot insertion would exceed multiplicity degree+1");
+  if (!(s.a() < t && t < s.b()))
+    throw Error(Errc::invalid_input, "knot insertion outside the open parameter interval");
+  if (s.multiplicity(t) + times > s.degree() + 1)
+    throw Error(Errc::invalid_input, "knot insertion would exceed multiplicity degree+1");
   std::vector<S> T = s.knots();
   std::vector<Coef> P = s.ctrl();
   const int p = s.degree();
@@ -169,7 +183,8 @@ BSpline<Coef> insert_knot(const BSpline<Coef>& s, const coef_scalar_t<Coef>& t, 
 
 /// The Bezier form of s on [x, y], a sub-interval of one knot span.
 template <typename Coef>
-Bernstein<Coef> bezier_piece(const BSpline<Coef>& s, const coef_scalar_t<Coef>& x, const coef_scalar_t<Coef>& y) {
+Bernstein<Coef> bezier_piece(const BSpline<Coef>& s, const coef_scalar_t<Coef>& x,
+                             const coef_scalar_t<Coef>& y) {
   const int p = s.degree();
   const int j = s.find_span(x);
   std::vector<Coef> c;
@@ -203,7 +218,8 @@ BSpline<Coef> from_bezier_pieces(const std::vector<Bernstein<Coef>>& pieces, int
   std::vector<S> x;
   for (const auto& v : knots)
     if (x.empty() || x.back() != v) x.push_back(v);
-  if (x.size() != pieces.size() + 1) throw Error(Errc::internal, "Bezier pieces do not match the knot vector");
+  if (x.size() != pieces.size() + 1)
+    throw Error(Errc::internal, "Bezier pieces do not match the knot vector");
   std::vector<Coef> ctrl;
   ctrl.reserve(n);
   for (std::size_t i = 0; i < n; ++i) {
@@ -212,13 +228,17 @@ BSpline<Coef> from_bezier_pieces(const std::vector<Bernstein<Coef>>& pieces, int
     bool found = false;
     for (std::size_t j = std::max(i, d); j <= std::min(i + d, n - 1); ++j)
       if (knots[j] < knots[j + 1]) {
-        const auto dist = [&](std::size_t jj) { return jj > i + d / 2 ? jj - (i + d / 2) : (i + d / 2) - jj; };
+        const auto dist = [&](std::size_t jj) {
+          return jj > i + d / 2 ? jj - (i + d / 2) : (i + d / 2) - jj;
+        };
         if (!found || dist(j) < dist(best)) best = j;
         found = true;
       }
     if (!found) throw Error(Errc::internal, "pole without a non-empty span");
-    const std::size_t k = static_cast<std::size_t>(std::lower_bound(x.begin(), x.end(), knots[best]) - x.begin());
-    std::vector<S> u(knots.begin() + static_cast<std::ptrdiff_t>(i + 1), knots.begin() + static_cast<std::ptrdiff_t>(i + d + 1));
+    const std::size_t k =
+        static_cast<std::size_t>(std::lower_bound(x.begin(), x.end(), knots[best]) - x.begin());
+    std::vector<S> u(knots.begin() + static_cast<std::ptrdiff_t>(i + 1),
+                     knots.begin() + static_cast<std::ptrdiff_t>(i + d + 1));
     ctrl.push_back(d == 0 ? pieces[k][0] : blossom(pieces[k], u));
   }
   return BSpline<Coef>::make(degree, std::move(knots), std::move(ctrl));
@@ -231,7 +251,8 @@ template <typename A, typename B, typename Op = RingMul>
 auto product(const BSpline<A>& s, const BSpline<B>& r, Op op = {}) {
   using R = std::decay_t<decltype(op(s.ctrl()[0], r.ctrl()[0]))>;
   using S = coef_scalar_t<R>;
-  if (s.a() != r.a() || s.b() != r.b()) throw Error(Errc::invalid_input, "product of splines on different intervals");
+  if (s.a() != r.a() || s.b() != r.b())
+    throw Error(Errc::invalid_input, "product of splines on different intervals");
   const int p = s.degree(), q = r.degree(), d = p + q;
   std::vector<S> x = s.breakpoints();
   for (const auto& v : r.breakpoints()) x.push_back(v);

@@ -25,9 +25,7 @@ class DualQuaternion {
     return DualQuaternion(Quat::real(Scalar(2)), Quat::pure(v));
   }
   /// Pose (14): P = (2 + eps s) * r, rotation r (any non-zero quaternion) then translation s.
-  static DualQuaternion pose(const Vec3& s, const Quat& r) {
-    return translation(s) * from_real(r);
-  }
+  static DualQuaternion pose(const Vec3& s, const Quat& r) { return translation(s) * from_real(r); }
 
   const Quat& real() const { return real_; }
   const Quat& dual() const { return dual_; }
@@ -141,7 +139,8 @@ Eigen::Matrix<Scalar, 4, 4> to_matrix4(const DualQuaternion<Scalar>& q) {
 
 /// The point map (12): homogeneous image (y0, y) of the homogeneous point (x0, x).
 template <typename Scalar>
-Eigen::Matrix<Scalar, 4, 1> apply(const DualQuaternion<Scalar>& q, const Eigen::Matrix<Scalar, 4, 1>& x) {
+Eigen::Matrix<Scalar, 4, 1> apply(const DualQuaternion<Scalar>& q,
+                                  const Eigen::Matrix<Scalar, 4, 1>& x) {
   using Quat = Quaternion<Scalar>;
   const Quat q0c = q.real().conj();
   const DualQuaternion<Scalar> xp(Quat::real(Scalar(2) * x(0)), Quat::pure(x.template tail<3>()));
@@ -154,11 +153,13 @@ Eigen::Matrix<Scalar, 4, 1> apply(const DualQuaternion<Scalar>& q, const Eigen::
 
 /// Cartesian image of the Cartesian point p under Q. @pre Q0 != 0
 template <typename Scalar>
-Eigen::Matrix<Scalar, 3, 1> apply_point(const DualQuaternion<Scalar>& q, const Eigen::Matrix<Scalar, 3, 1>& p) {
+Eigen::Matrix<Scalar, 3, 1> apply_point(const DualQuaternion<Scalar>& q,
+                                        const Eigen::Matrix<Scalar, 3, 1>& p) {
   Eigen::Matrix<Scalar, 4, 1> x;
   x << Scalar(1), p;
   const Eigen::Matrix<Scalar, 4, 1> y = apply(q, x);
-  if (y(0) == Scalar(0)) throw Error(Errc::numerical_failure, "dual quaternion with zero real part");
+  if (y(0) == Scalar(0))
+    throw Error(Errc::numerical_failure, "dual quaternion with zero real part");
   return y.template tail<3>() / y(0);
 }
 

@@ -49,7 +49,8 @@ struct Plucker {
 struct Matrix4 {
   template <typename S>
   Eigen::Matrix<S, 4, 4> operator()(const DualQuaternion<S>& a, const DualQuaternion<S>& b) const {
-    const Eigen::Matrix<S, 4, 4> m = to_matrix4(DualQuaternion<S>(a + b)) - to_matrix4(a) - to_matrix4(b);
+    const Eigen::Matrix<S, 4, 4> m =
+        to_matrix4(DualQuaternion<S>(a + b)) - to_matrix4(a) - to_matrix4(b);
     return (m / S(2)).eval();
   }
 };
@@ -92,7 +93,7 @@ BSpline<Eigen::Matrix<Scalar, 4, 4>> matrix_spline(const QMotion<Scalar>& m) {
 /// reduction).
 template <typename Scalar>
 BSpline<Eigen::Matrix<Scalar, 4, 1>> homogeneous_trajectory(const QMotion<Scalar>& m,
-                                                             const Eigen::Matrix<Scalar, 4, 1>& x) {
+                                                            const Eigen::Matrix<Scalar, 4, 1>& x) {
   return product(m.curve, m.curve, polar::PointImage<Scalar>{x});
 }
 
@@ -105,7 +106,8 @@ Scalar plucker_residual(const QMotion<Scalar>& m) {
   Scalar num(0), den(0);
   for (const auto& c : pl.ctrl()) num = std::max(num, abs_value(c));
   for (const auto& c : w.ctrl()) den = std::max(den, abs_value(c));
-  if (den == Scalar(0)) throw Error(Errc::numerical_failure, "motion with identically zero rotational part");
+  if (den == Scalar(0))
+    throw Error(Errc::numerical_failure, "motion with identically zero rotational part");
   return Scalar(num / den);
 }
 

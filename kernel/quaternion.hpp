@@ -45,7 +45,9 @@ class Quaternion {
   /// Vec Q.
   Vec3 vec() const { return Vec3(c_[1], c_[2], c_[3]); }
 
-  Quaternion conj() const { return Quaternion(c_[0], Scalar(-c_[1]), Scalar(-c_[2]), Scalar(-c_[3])); }
+  Quaternion conj() const {
+    return Quaternion(c_[0], Scalar(-c_[1]), Scalar(-c_[2]), Scalar(-c_[3]));
+  }
   /// Q * conj(Q) = w^2 + x^2 + y^2 + z^2.
   Scalar norm2() const {
     Scalar s = c_[0] * c_[0];
@@ -70,7 +72,9 @@ class Quaternion {
     for (auto& c : c_) c *= s;
     return *this;
   }
-  Quaternion operator-() const { return Quaternion(Scalar(-c_[0]), Scalar(-c_[1]), Scalar(-c_[2]), Scalar(-c_[3])); }
+  Quaternion operator-() const {
+    return Quaternion(Scalar(-c_[0]), Scalar(-c_[1]), Scalar(-c_[2]), Scalar(-c_[3]));
+  }
   friend Quaternion operator+(Quaternion a, const Quaternion& b) { return a += b; }
   friend Quaternion operator-(Quaternion a, const Quaternion& b) { return a -= b; }
   friend Quaternion operator*(Quaternion a, const Scalar& s) { return a *= s; }
@@ -139,7 +143,8 @@ Eigen::Matrix<Scalar, 3, 3> rotation_matrix(const Quaternion<Scalar>& q) {
 
 /// Rotates the vector v by the quaternion q (not necessarily unit): q v conj(q) / |q|^2.
 template <typename Scalar>
-Eigen::Matrix<Scalar, 3, 1> rotate(const Quaternion<Scalar>& q, const Eigen::Matrix<Scalar, 3, 1>& v) {
+Eigen::Matrix<Scalar, 3, 1> rotate(const Quaternion<Scalar>& q,
+                                   const Eigen::Matrix<Scalar, 3, 1>& v) {
   const Quaternion<Scalar> r = q * Quaternion<Scalar>::pure(v) * q.conj();
   return r.vec() / q.norm2();
 }
@@ -167,16 +172,20 @@ Quaternion<Scalar> from_rotation_matrix(const Eigen::Matrix<Scalar, 3, 3>& m) {
   Quaternion<Scalar> q;
   if (tr >= m(0, 0) && tr >= m(1, 1) && tr >= m(2, 2)) {
     const Scalar s = std::sqrt(Scalar(1) + tr) * 2;
-    q = Quaternion<Scalar>(s / 4, (m(2, 1) - m(1, 2)) / s, (m(0, 2) - m(2, 0)) / s, (m(1, 0) - m(0, 1)) / s);
+    q = Quaternion<Scalar>(s / 4, (m(2, 1) - m(1, 2)) / s, (m(0, 2) - m(2, 0)) / s,
+                           (m(1, 0) - m(0, 1)) / s);
   } else if (m(0, 0) >= m(1, 1) && m(0, 0) >= m(2, 2)) {
     const Scalar s = std::sqrt(Scalar(1) + m(0, 0) - m(1, 1) - m(2, 2)) * 2;
-    q = Quaternion<Scalar>((m(2, 1) - m(1, 2)) / s, s / 4, (m(0, 1) + m(1, 0)) / s, (m(0, 2) + m(2, 0)) / s);
+    q = Quaternion<Scalar>((m(2, 1) - m(1, 2)) / s, s / 4, (m(0, 1) + m(1, 0)) / s,
+                           (m(0, 2) + m(2, 0)) / s);
   } else if (m(1, 1) >= m(2, 2)) {
     const Scalar s = std::sqrt(Scalar(1) + m(1, 1) - m(0, 0) - m(2, 2)) * 2;
-    q = Quaternion<Scalar>((m(0, 2) - m(2, 0)) / s, (m(0, 1) + m(1, 0)) / s, s / 4, (m(1, 2) + m(2, 1)) / s);
+    q = Quaternion<Scalar>((m(0, 2) - m(2, 0)) / s, (m(0, 1) + m(1, 0)) / s, s / 4,
+                           (m(1, 2) + m(2, 1)) / s);
   } else {
     const Scalar s = std::sqrt(Scalar(1) + m(2, 2) - m(0, 0) - m(1, 1)) * 2;
-    q = Quaternion<Scalar>((m(1, 0) - m(0, 1)) / s, (m(0, 2) + m(2, 0)) / s, (m(1, 2) + m(2, 1)) / s, s / 4);
+    q = Quaternion<Scalar>((m(1, 0) - m(0, 1)) / s, (m(0, 2) + m(2, 0)) / s,
+                           (m(1, 2) + m(2, 1)) / s, s / 4);
   }
   q = q / std::sqrt(q.norm2());
   return q.w() < 0 ? -q : q;

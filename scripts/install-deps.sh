@@ -12,7 +12,7 @@ packages=(
   libocct-data-exchange-dev libtbb-dev
 )
 if [[ "${1:-}" == "--test" ]]; then
-  packages+=(googletest libgtest-dev libgmock-dev libbenchmark-dev)
+  packages+=(googletest libgtest-dev libgmock-dev libbenchmark-dev clang-format git)
 fi
 
 missing=()

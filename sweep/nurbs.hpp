@@ -34,7 +34,9 @@ NurbsCurve<Scalar> to_nurbs(const kernel::BSpline<Eigen::Matrix<Scalar, 4, 1>>& 
   c.degree = h.degree();
   c.knots = h.knots();
   for (const auto& p : h.ctrl()) {
-    if (p(0) == Scalar(0)) throw Error(Errc::numerical_failure, "a homogeneous pole has weight zero (point at infinity)");
+    if (p(0) == Scalar(0))
+      throw Error(Errc::numerical_failure,
+                  "a homogeneous pole has weight zero (point at infinity)");
     c.weights.push_back(p(0));
     c.points.push_back((p.template tail<3>() / p(0)).eval());
   }

@@ -25,7 +25,8 @@ inline ::testing::AssertionResult throws_error(const std::function<void()>& f, E
     if (e.code() != code) return ::testing::AssertionFailure() << "wrong error kind: " << e.what();
     const std::string msg = e.what();
     for (const auto& n : needles)
-      if (msg.find(n) == std::string::npos) return ::testing::AssertionFailure() << "message '" << msg << "' lacks '" << n << "'";
+      if (msg.find(n) == std::string::npos)
+        return ::testing::AssertionFailure() << "message '" << msg << "' lacks '" << n << "'";
     return ::testing::AssertionSuccess();
   }
   return ::testing::AssertionFailure() << "no qmotion::Error thrown";

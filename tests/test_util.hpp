@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
-
 #include <random>
 #include <vector>
 
@@ -68,7 +67,8 @@ template <typename C>
   } else {
     const double err = kernel::max_abs(d), ref = std::max(1.0, kernel::max_abs(a));
     if (err <= tol * ref) return ::testing::AssertionSuccess();
-    return ::testing::AssertionFailure() << "difference " << err << " exceeds " << tol << " * " << ref;
+    return ::testing::AssertionFailure()
+           << "difference " << err << " exceeds " << tol << " * " << ref;
   }
 }
 

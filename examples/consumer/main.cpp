@@ -1,8 +1,8 @@
 // A user's program against the installed qmotion: a pose product satisfies Plucker.
 #include <iostream>
 
-#include "kernel/dual_quaternion.hpp"
 #include "io/occt_info.hpp"
+#include "kernel/dual_quaternion.hpp"
 
 int main() {
   using DQ = qmotion::kernel::DualQuaternion<double>;

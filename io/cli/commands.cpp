@@ -25,7 +25,8 @@ Eigen::Vector3d parse_point(const std::string& text, const std::string& flag) {
   std::stringstream ss(text);
   std::string cell;
   while (std::getline(ss, cell, ',')) v.push_back(io::parse_number_text(cell, flag).value);
-  if (v.size() != 3) throw Error(Errc::invalid_input, flag + ": expected three numbers x,y,z, found '" + text + "'");
+  if (v.size() != 3)
+    throw Error(Errc::invalid_input, flag + ": expected three numbers x,y,z, found '" + text + "'");
   return Eigen::Vector3d(v[0], v[1], v[2]);
 }
 
@@ -33,7 +34,8 @@ json vec_json(const Eigen::Vector3d& v) { return json{v(0), v(1), v(2)}; }
 
 /// Residual of Q(t_i) against the pose P_i, scale free: min over the sign of
 /// |Q/|Q| -+ P/|P|| (8 components).
-double pose_residual(const kernel::DualQuaternion<double>& q, const kernel::DualQuaternion<double>& p) {
+double pose_residual(const kernel::DualQuaternion<double>& q,
+                     const kernel::DualQuaternion<double>& p) {
   const double nq = std::sqrt(q.real().norm2()), np = std::sqrt(p.real().norm2());
   double plus = 0, minus = 0;
   for (int i = 0; i < 8; ++i) {
@@ -74,7 +76,9 @@ int cmd_info(const std::string& path, bool exact) {
     out["plucker_residual"] = kernel::plucker_residual(m);
   }
 #else
-  if (exact) throw Error(Errc::invalid_input, "--exact: this build has no exact arithmetic (QMOTION_WITH_CGAL=OFF)");
+  if (exact)
+    throw Error(Errc::invalid_input,
+                "--exact: this build has no exact arithmetic (QMOTION_WITH_CGAL=OFF)");
   out["plucker_residual"] = kernel::plucker_residual(m);
 #endif
   json res = nullptr;
@@ -84,7 +88,8 @@ int cmd_info(const std::string& path, bool exact) {
     const json& params = f.method.contains("parameters") ? f.method["parameters"] : json();
     for (std::size_t i = 0; i < P.size(); ++i) {
       double t = P[i].t ? *P[i].t : std::nan("");
-      if (params.is_array() && i < params.size()) t = io::read_number(params[i], path + ": method.parameters").value;
+      if (params.is_array() && i < params.size())
+        t = io::read_number(params[i], path + ": method.parameters").value;
       if (!std::isfinite(t)) {
         res = nullptr;
         break;
@@ -110,12 +115,16 @@ int cmd_eval(const std::string& path, const std::string& t_text, const std::stri
   if (t < m.a() || t > m.b()) {
     std::ostringstream os;
     os.precision(17);
-    os << "--t " << t_text << " is outside the motion's parameter interval [" << m.a() << ", " << m.b() << "]";
+    os << "--t " << t_text << " is outside the motion's parameter interval [" << m.a() << ", "
+       << m.b() << "]";
     throw Error(Errc::invalid_input, os.str());
   }
-  const Eigen::Vector3d x = point_text.empty() ? Eigen::Vector3d::Zero() : parse_point(point_text, "--point");
+  const Eigen::Vector3d x =
+      point_text.empty() ? Eigen::Vector3d::Zero() : parse_point(point_text, "--point");
   const auto q = kernel::evaluate(m, t);
-  if (q.real().norm2() <= 1e-300) throw Error(Errc::numerical_failure, "the motion has a pole at t = " + t_text + " (zero rotational part)");
+  if (q.real().norm2() <= 1e-300)
+    throw Error(Errc::numerical_failure,
+                "the motion has a pole at t = " + t_text + " (zero rotational part)");
   kernel::Quaternion<double> r = kernel::normalized(q.real());
   if (r.w() < 0) r = -r;
   json out;
@@ -124,7 +133,10 @@ int cmd_eval(const std::string& path, const std::string& t_text, const std::stri
   out["quaternion"] = {r.w(), r.x(), r.y(), r.z()};
   out["point"] = vec_json(kernel::apply_point(q, x));
   const double pl = kernel::plucker_residual(q);
-  if (pl > 1e-9) std::cerr << "qmotion: warning: " << path << " violates the Plucker condition at t (relative residual " << pl << "): not a rigid motion\n";
+  if (pl > 1e-9)
+    std::cerr << "qmotion: warning: " << path
+              << " violates the Plucker condition at t (relative residual " << pl
+              << "): not a rigid motion\n";
   std::cout << out.dump(2) << '\n';
   return 0;
 }
@@ -136,15 +148,20 @@ int cmd_poses(const std::string& path, const std::string& out_path) {
     io::write_file_atomic(out_path, doc.dump(1) + "\n");
     std::cerr << "qmotion: wrote " << set.poses.size() << " poses to " << out_path << "\n";
   } else {
-    json summary{{"source", path}, {"poses", set.poses.size()}, {"units", set.units}, {"has_t", set.has_t()}};
+    json summary{{"source", path},
+                 {"poses", set.poses.size()},
+                 {"units", set.units},
+                 {"has_t", set.has_t()}};
     std::cout << summary.dump(2) << '\n';
   }
   return 0;
 }
 
 int cmd_demo(const std::string& dir) {
-  std::cout << "qmotion demo: not yet. The demo (five poses -> elliptic + TR motion -> trajectories and a\n"
-               "kinematic surface written as STEP, IGES and JSON) arrives with interpolation and sweeps.\n"
+  std::cout << "qmotion demo: not yet. The demo (five poses -> elliptic + TR motion -> "
+               "trajectories and a\n"
+               "kinematic surface written as STEP, IGES and JSON) arrives with interpolation and "
+               "sweeps.\n"
                "Output folder requested: "
             << dir << " (nothing written).\n";
   return 0;
@@ -153,27 +170,38 @@ int cmd_demo(const std::string& dir) {
 }  // namespace
 
 int run(int argc, char** argv) {
-  CLI::App app{"qmotion: rational motions from rigid-body poses, exported as exact NURBS", "qmotion"};
+  CLI::App app{"qmotion: rational motions from rigid-body poses, exported as exact NURBS",
+               "qmotion"};
   app.require_subcommand(0, 1);
   bool version = false;
   app.add_flag("--version", version, "Print the version and the OpenCASCADE version, then exit");
   app.footer(
       "Exit status: 0 success, 2 bad input or usage, 3 numerical failure, 1 internal error.\n"
-      "Conventions: quaternions (w,x,y,z); pose P = (2 + eps s) * r; millimetres unless the file says otherwise.\n");
+      "Conventions: quaternions (w,x,y,z); pose P = (2 + eps s) * r; millimetres unless the file "
+      "says otherwise.\n");
 
-  auto* info = app.add_subcommand("info", "Describe a motion file as JSON (degree, order, Plucker residual, poles, ...)");
+  auto* info = app.add_subcommand(
+      "info", "Describe a motion file as JSON (degree, order, Plucker residual, poles, ...)");
   std::string info_path;
   bool info_exact = false;
   info->add_option("MOTION", info_path, "Motion JSON file")->required();
-  info->add_flag("--exact", info_exact, "Compute the Plucker residual in exact rational arithmetic from the file's digits");
+  info->add_flag(
+      "--exact", info_exact,
+      "Compute the Plucker residual in exact rational arithmetic from the file's digits");
 
-  auto* eval = app.add_subcommand("eval", "Evaluate a motion at a parameter: position, rotation and an optional point");
+  auto* eval = app.add_subcommand(
+      "eval", "Evaluate a motion at a parameter: position, rotation and an optional point");
   std::string eval_path, eval_t, eval_point;
   eval->add_option("MOTION", eval_path, "Motion JSON file")->required();
-  eval->add_option("--t", eval_t, "Parameter value inside the motion's interval (negative values allowed)")->required()->allow_extra_args(false);
-  eval->add_option("--point", eval_point, "Point x,y,z of the moving space whose image is reported (default: the origin)");
+  eval->add_option("--t", eval_t,
+                   "Parameter value inside the motion's interval (negative values allowed)")
+      ->required()
+      ->allow_extra_args(false);
+  eval->add_option("--point", eval_point,
+                   "Point x,y,z of the moving space whose image is reported (default: the origin)");
 
-  auto* poses = app.add_subcommand("poses", "Validate a pose file (JSON or CSV); with -o, write it as canonical pose JSON");
+  auto* poses = app.add_subcommand(
+      "poses", "Validate a pose file (JSON or CSV); with -o, write it as canonical pose JSON");
   std::string poses_path, poses_out;
   poses->add_option("POSES", poses_path, "Pose file (.json or .csv)")->required();
   poses->add_option("-o,--output", poses_out, "Write the poses as JSON (SPEC §5) to this file");

@@ -36,7 +36,9 @@ BENCHMARK(BM_BernsteinProductDualQuaternion)->Arg(4)->Arg(8);
 
 void BM_MatrixSplineOfMotion(benchmark::State& st) {
   const int n = static_cast<int>(st.range(0));
-  const QMotion<double> m{Basis::bezier, BSpline<DualQuaternion<double>>::from_bezier(Bernstein<DualQuaternion<double>>(random_dq(n + 1, 4)))};
+  const QMotion<double> m{Basis::bezier,
+                          BSpline<DualQuaternion<double>>::from_bezier(
+                              Bernstein<DualQuaternion<double>>(random_dq(n + 1, 4)))};
   for (auto _ : st) benchmark::DoNotOptimize(matrix_spline(m));
 }
 BENCHMARK(BM_MatrixSplineOfMotion)->Arg(4)->Arg(8);

@@ -66,7 +66,8 @@ json run_json(const std::vector<std::string>& args) {
 TEST(Cli, HelpVersionAndUsage) {
   const Result h = run({"--help"});
   EXPECT_EQ(h.status, 0);
-  for (const char* cmd : {"info", "eval", "poses", "demo", "Exit status"}) EXPECT_NE(h.out.find(cmd), std::string::npos) << cmd;
+  for (const char* cmd : {"info", "eval", "poses", "demo", "Exit status"})
+    EXPECT_NE(h.out.find(cmd), std::string::npos) << cmd;
   const Result sub = run({"eval", "--help"});
   EXPECT_EQ(sub.status, 0);
   EXPECT_NE(sub.out.find("--point"), std::string::npos);
@@ -115,8 +116,8 @@ TEST(Cli, NegativeParametersAreValues) {
 TEST(Cli, InfoReportsTheSpecKeys) {
   for (const std::string name : {"bezier_tr.json", "bspline_tr.json"}) {
     const json i = run_json({"info", kExamples + "/motions/" + name});
-    for (const char* key : {"type", "basis", "degree", "order", "segments", "param_range", "plucker_residual",
-                            "interpolation_residual", "poles"})
+    for (const char* key : {"type", "basis", "degree", "order", "segments", "param_range",
+                            "plucker_residual", "interpolation_residual", "poles"})
       EXPECT_TRUE(i.contains(key)) << key;
     EXPECT_EQ(i["degree"], 2);
     // TR with rotation degree k = 1 and translation degree l = 1: a general point's
@@ -133,7 +134,10 @@ TEST(Cli, InfoReportsTheSpecKeys) {
 
 TEST(Cli, PolesAreReportedAndEvalAtAPoleIsANumericalFailure) {
   // Rotational part 2(1 - 2t): zero at t = 1/2.
-  const json m{{"type", "q-motion"}, {"basis", "bezier"}, {"degree", 1}, {"param_range", {0, 1}},
+  const json m{{"type", "q-motion"},
+               {"basis", "bezier"},
+               {"degree", 1},
+               {"param_range", {0, 1}},
                {"control_points", {{2, 0, 0, 0, 0, 0, 0, 0}, {-2, 0, 0, 0, 0, 0, 0, 0}}}};
   const fs::path f = scratch_dir() / "pole.json";
   std::ofstream(f) << m.dump();
@@ -155,7 +159,8 @@ TEST(Cli, BadMotionFilesExitTwoNamingTheFile) {
   const Result missing = run({"info", (scratch_dir() / "nope.json").string()});
   EXPECT_EQ(missing.status, 2);
   EXPECT_NE(missing.err.find("cannot open"), std::string::npos);
-  const Result badpoint = run({"eval", kExamples + "/motions/bezier_tr.json", "--t", "0", "--point", "1,2"});
+  const Result badpoint =
+      run({"eval", kExamples + "/motions/bezier_tr.json", "--t", "0", "--point", "1,2"});
   EXPECT_EQ(badpoint.status, 2);
   EXPECT_NE(badpoint.err.find("--point"), std::string::npos);
 }
@@ -174,7 +179,8 @@ TEST(Cli, BadPoseFilesExitTwoAndLeaveNoOutput) {
     EXPECT_NE(r.err.find(in.string()), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(out)) << in;
     for (const auto& left : fs::directory_iterator(scratch_dir()))
-      EXPECT_EQ(left.path().filename().string().find(".tmp-"), std::string::npos) << "temporary left behind";
+      EXPECT_EQ(left.path().filename().string().find(".tmp-"), std::string::npos)
+          << "temporary left behind";
   }
 }
 

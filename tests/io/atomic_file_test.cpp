@@ -36,10 +36,11 @@ TEST(AtomicFile, UncommittedOutputLeavesNothing) {
 }
 
 TEST(AtomicFile, UnwritableFolderIsBadInputNamingThePath) {
-  EXPECT_TRUE(throws_error([] { io::write_file_atomic("/nonexistent-dir/out.json", "x"); }, Errc::invalid_input,
-                           {"/nonexistent-dir/out.json"}));
+  EXPECT_TRUE(throws_error([] { io::write_file_atomic("/nonexistent-dir/out.json", "x"); },
+                           Errc::invalid_input, {"/nonexistent-dir/out.json"}));
   const auto d = scratch("dir");
-  EXPECT_TRUE(throws_error([&] { io::write_file_atomic(d.string(), "x"); }, Errc::invalid_input, {"directory"}));
+  EXPECT_TRUE(throws_error([&] { io::write_file_atomic(d.string(), "x"); }, Errc::invalid_input,
+                           {"directory"}));
 }
 
 }  // namespace

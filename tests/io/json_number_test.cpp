@@ -11,11 +11,14 @@ using io::parse_number_text;
 using kernel::Rational;
 
 TEST(JsonNumber, FloatLiteralsKeepTheirSourceText) {
-  const auto j = parse_json(R"({"a": 0.1, "b": [1, -2.50e-3, 12345678901234567890123], "c": "3/4"})", "mem");
+  const auto j =
+      parse_json(R"({"a": 0.1, "b": [1, -2.50e-3, 12345678901234567890123], "c": "3/4"})", "mem");
   EXPECT_EQ(io::read_number(j["a"], "a").text, "0.1");
   EXPECT_EQ(io::exact_from_text(io::read_number(j["a"], "a").text), Rational(1) / Rational(10));
-  EXPECT_EQ(io::exact_from_text(io::read_number(j["b"][1], "b").text), Rational(-25) / Rational(10000));
-  EXPECT_EQ(io::exact_from_text(io::read_number(j["b"][2], "b").text), Rational("12345678901234567890123"));
+  EXPECT_EQ(io::exact_from_text(io::read_number(j["b"][1], "b").text),
+            Rational(-25) / Rational(10000));
+  EXPECT_EQ(io::exact_from_text(io::read_number(j["b"][2], "b").text),
+            Rational("12345678901234567890123"));
   EXPECT_EQ(io::read_number(j["b"][0], "b").value, 1.0);
   EXPECT_EQ(io::exact_from_text(io::read_number(j["c"], "c").text), Rational(3) / Rational(4));
   EXPECT_DOUBLE_EQ(io::read_number(j["c"], "c").value, 0.75);
@@ -34,19 +37,28 @@ TEST(JsonNumber, RationalTextIsExactAndCanonical) {
 }
 
 TEST(JsonNumber, BadNumbersNameTheField) {
-  EXPECT_TRUE(throws_error([] { parse_number_text("NaN", "poses[1].t"); }, Errc::invalid_input, {"poses[1].t", "finite"}));
+  EXPECT_TRUE(throws_error([] { parse_number_text("NaN", "poses[1].t"); }, Errc::invalid_input,
+                           {"poses[1].t", "finite"}));
   EXPECT_TRUE(throws_error([] { parse_number_text("inf", "f"); }, Errc::invalid_input, {"finite"}));
-  EXPECT_TRUE(throws_error([] { parse_number_text("1e999", "f"); }, Errc::invalid_input, {"range"}));
-  EXPECT_TRUE(throws_error([] { parse_number_text("1/0", "f"); }, Errc::invalid_input, {"zero denominator"}));
-  EXPECT_TRUE(throws_error([] { parse_number_text("abc", "f"); }, Errc::invalid_input, {"not a number"}));
-  EXPECT_TRUE(throws_error([] { io::read_number(nlohmann::json::array(), "pos"); }, Errc::invalid_input, {"pos", "expected a number"}));
+  EXPECT_TRUE(
+      throws_error([] { parse_number_text("1e999", "f"); }, Errc::invalid_input, {"range"}));
+  EXPECT_TRUE(throws_error([] { parse_number_text("1/0", "f"); }, Errc::invalid_input,
+                           {"zero denominator"}));
+  EXPECT_TRUE(
+      throws_error([] { parse_number_text("abc", "f"); }, Errc::invalid_input, {"not a number"}));
+  EXPECT_TRUE(throws_error([] { io::read_number(nlohmann::json::array(), "pos"); },
+                           Errc::invalid_input, {"pos", "expected a number"}));
 }
 
 TEST(JsonNumber, SyntaxErrorsGiveLineAndColumn) {
-  EXPECT_TRUE(throws_error([] { parse_json("{\n  \"a\": [1, 2,\n}", "f.json"); }, Errc::invalid_input, {"f.json", "line 3"}));
-  EXPECT_TRUE(throws_error([] { parse_json(R"({"a": NaN})", "g.json"); }, Errc::invalid_input, {"g.json", "NaN"}));
-  EXPECT_TRUE(throws_error([] { parse_json("", "e.json"); }, Errc::invalid_input, {"e.json", "invalid JSON"}));
-  EXPECT_TRUE(throws_error([] { io::read_json_file("/nonexistent/x.json"); }, Errc::invalid_input, {"/nonexistent/x.json", "cannot open"}));
+  EXPECT_TRUE(throws_error([] { parse_json("{\n  \"a\": [1, 2,\n}", "f.json"); },
+                           Errc::invalid_input, {"f.json", "line 3"}));
+  EXPECT_TRUE(throws_error([] { parse_json(R"({"a": NaN})", "g.json"); }, Errc::invalid_input,
+                           {"g.json", "NaN"}));
+  EXPECT_TRUE(throws_error([] { parse_json("", "e.json"); }, Errc::invalid_input,
+                           {"e.json", "invalid JSON"}));
+  EXPECT_TRUE(throws_error([] { io::read_json_file("/nonexistent/x.json"); }, Errc::invalid_input,
+                           {"/nonexistent/x.json", "cannot open"}));
 }
 
 }  // namespace

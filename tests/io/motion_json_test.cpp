@@ -17,16 +17,21 @@ TEST(MotionJson, HandWrittenExamplesAreRigidAndFollowTheirTranslation) {
   EXPECT_EQ(bez.degree(), 2);
   EXPECT_EQ(kernel::plucker_residual(bez), 0.0);
   for (double t : {0.0, 0.3, 0.5, 1.0})
-    EXPECT_NEAR((kernel::translation_vector(kernel::evaluate(bez, t)) - Eigen::Vector3d(10 * t, 20 * t, 0)).norm(), 0, 1e-13);
+    EXPECT_NEAR(
+        (kernel::translation_vector(kernel::evaluate(bez, t)) - Eigen::Vector3d(10 * t, 20 * t, 0))
+            .norm(),
+        0, 1e-13);
   const auto bsp = io::to_motion_double(io::read_motion(kExamples + "/motions/bspline_tr.json"));
   EXPECT_EQ(bsp.basis, kernel::Basis::bspline);
   EXPECT_EQ(bsp.segments(), 2);
   for (double t : {0.0, 0.25, 0.5, 0.75, 1.0}) {
-    const Eigen::Vector3d p = t <= 0.5 ? Eigen::Vector3d(20 * t, 0, 0) : Eigen::Vector3d(10, 20 * (t - 0.5), 0);
+    const Eigen::Vector3d p =
+        t <= 0.5 ? Eigen::Vector3d(20 * t, 0, 0) : Eigen::Vector3d(10, 20 * (t - 0.5), 0);
     EXPECT_NEAR((kernel::translation_vector(kernel::evaluate(bsp, t)) - p).norm(), 0, 1e-13) << t;
   }
   // Exactly: the Plucker residual of the exact reading is zero.
-  EXPECT_EQ(kernel::plucker_residual(io::to_motion_exact(io::read_motion(kExamples + "/motions/bspline_tr.json"))),
+  EXPECT_EQ(kernel::plucker_residual(
+                io::to_motion_exact(io::read_motion(kExamples + "/motions/bspline_tr.json"))),
             kernel::Rational(0));
 }
 
@@ -34,15 +39,20 @@ TEST(MotionJson, RoundTripDoubleAndExact) {
   for (const std::string f : {"/motions/bezier_tr.json", "/motions/bspline_tr.json"}) {
     const auto file = io::read_motion(kExamples + f);
     const auto m = io::to_motion_double(file);
-    const auto back = io::to_motion_double(io::parse_motion(io::parse_json(io::motion_to_json(m, file.method).dump(), "rt"), "rt"));
+    const auto back = io::to_motion_double(
+        io::parse_motion(io::parse_json(io::motion_to_json(m, file.method).dump(), "rt"), "rt"));
     EXPECT_EQ(back.curve.knots(), m.curve.knots());
-    for (std::size_t i = 0; i < m.curve.ctrl().size(); ++i) EXPECT_EQ(back.curve.ctrl()[i], m.curve.ctrl()[i]);
+    for (std::size_t i = 0; i < m.curve.ctrl().size(); ++i)
+      EXPECT_EQ(back.curve.ctrl()[i], m.curve.ctrl()[i]);
     // Exact: non-dyadic rationals survive as "p/q" strings.
     auto e = io::to_motion_exact(file);
     auto ctrl = e.curve.ctrl();
     ctrl[1] = ctrl[1] * (kernel::Rational(1) / kernel::Rational(3));
-    const kernel::QMotion<kernel::Rational> e3{e.basis, kernel::BSpline<kernel::DualQuaternion<kernel::Rational>>::make(e.degree(), e.curve.knots(), ctrl)};
-    const auto eback = io::to_motion_exact(io::parse_motion(io::parse_json(io::motion_to_json(e3, nullptr).dump(), "rt"), "rt"));
+    const kernel::QMotion<kernel::Rational> e3{
+        e.basis, kernel::BSpline<kernel::DualQuaternion<kernel::Rational>>::make(
+                     e.degree(), e.curve.knots(), ctrl)};
+    const auto eback = io::to_motion_exact(
+        io::parse_motion(io::parse_json(io::motion_to_json(e3, nullptr).dump(), "rt"), "rt"));
     for (std::size_t i = 0; i < ctrl.size(); ++i) EXPECT_EQ(eback.curve.ctrl()[i], ctrl[i]);
   }
 }
@@ -71,7 +81,8 @@ TEST(MotionJson, EveryBadMotionIsRefusedWithItsReason) {
     } catch (const Error& e) {
       EXPECT_EQ(e.code(), Errc::invalid_input) << name;
       EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
-      for (const auto& n : needles) EXPECT_NE(std::string(e.what()).find(n), std::string::npos) << e.what() << " lacks " << n;
+      for (const auto& n : needles)
+        EXPECT_NE(std::string(e.what()).find(n), std::string::npos) << e.what() << " lacks " << n;
     }
   }
 }

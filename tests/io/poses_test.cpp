@@ -37,7 +37,8 @@ TEST(Poses, RationalStringsAreKeptExactly) {
   const auto set = io::read_poses(shared_data("poses/rational_exact.json"));
   ASSERT_EQ(set.poses.size(), 4u);
   EXPECT_EQ(io::exact_from_text(set.poses[1].t->text), kernel::Rational(1) / kernel::Rational(3));
-  EXPECT_EQ(io::exact_from_text(set.poses[3].position[2].text), kernel::Rational(1) / kernel::Rational(7));
+  EXPECT_EQ(io::exact_from_text(set.poses[3].position[2].text),
+            kernel::Rational(1) / kernel::Rational(7));
   EXPECT_EQ(set.poses[2].rotation.values[0].text, "2");
 }
 
@@ -60,12 +61,14 @@ TEST(Poses, CsvWithAndWithoutT) {
   const auto P = io::to_poses_double(set);
   EXPECT_EQ(P[2].position, Eigen::Vector3d(10, 10, 5));
   EXPECT_NEAR(P[1].rotation.w(), 0.5, 1e-15);
-  const auto no_t = io::parse_poses_csv("x,y,z,qw,qx,qy,qz\n0,0,0,1,0,0,0\n1,2,3,0,1,0,0\n", "n.csv");
+  const auto no_t =
+      io::parse_poses_csv("x,y,z,qw,qx,qy,qz\n0,0,0,1,0,0,0\n1,2,3,0,1,0,0\n", "n.csv");
   EXPECT_FALSE(no_t.has_t());
 }
 
 TEST(Poses, JsonRoundTripKeepsEveryNumber) {
-  for (const std::string f : {"poses/five_positions.json", "poses/rational_exact.json", "poses/three_positions_no_t.json"}) {
+  for (const std::string f : {"poses/five_positions.json", "poses/rational_exact.json",
+                              "poses/three_positions_no_t.json"}) {
     const auto a = io::read_poses(shared_data(f));
     const auto b = io::parse_poses_json(io::poses_to_json(a).dump(), "roundtrip");
     ASSERT_EQ(a.poses.size(), b.poses.size());
@@ -75,10 +78,12 @@ TEST(Poses, JsonRoundTripKeepsEveryNumber) {
         EXPECT_EQ(io::exact_from_text(a.poses[i].t->text), io::exact_from_text(b.poses[i].t->text));
       }
       for (int k = 0; k < 3; ++k)
-        EXPECT_EQ(io::exact_from_text(a.poses[i].position[k].text), io::exact_from_text(b.poses[i].position[k].text));
+        EXPECT_EQ(io::exact_from_text(a.poses[i].position[k].text),
+                  io::exact_from_text(b.poses[i].position[k].text));
       ASSERT_EQ(a.poses[i].rotation.values.size(), b.poses[i].rotation.values.size());
       for (std::size_t k = 0; k < a.poses[i].rotation.values.size(); ++k)
-        EXPECT_EQ(io::exact_from_text(a.poses[i].rotation.values[k].text), io::exact_from_text(b.poses[i].rotation.values[k].text));
+        EXPECT_EQ(io::exact_from_text(a.poses[i].rotation.values[k].text),
+                  io::exact_from_text(b.poses[i].rotation.values[k].text));
     }
   }
 }
@@ -123,7 +128,8 @@ TEST(Poses, EveryBadInputIsRefusedWithItsReason) {
       ADD_FAILURE() << c.file << " was accepted";
     } catch (const Error& e) {
       EXPECT_EQ(e.code(), Errc::invalid_input) << c.file;
-      for (const auto& n : needles) EXPECT_NE(std::string(e.what()).find(n), std::string::npos) << e.what() << " lacks " << n;
+      for (const auto& n : needles)
+        EXPECT_NE(std::string(e.what()).find(n), std::string::npos) << e.what() << " lacks " << n;
     }
   }
 }

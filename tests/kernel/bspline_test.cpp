@@ -17,7 +17,8 @@ BSpline<C> rand_spline(std::mt19937& g, int p, int mult) {
   k.push_back(S(2));
   k.insert(k.end(), static_cast<std::size_t>(p + 1), S(3));
   std::vector<C> c;
-  for (std::size_t i = 0; i + static_cast<std::size_t>(p) + 1 < k.size(); ++i) c.push_back(rand_coef<C>(g));
+  for (std::size_t i = 0; i + static_cast<std::size_t>(p) + 1 < k.size(); ++i)
+    c.push_back(rand_coef<C>(g));
   return BSpline<C>::make(p, std::move(k), std::move(c));
 }
 
@@ -34,7 +35,8 @@ S basis(const std::vector<S>& T, int i, int p, const S& t) {
   S r(0);
   const std::size_t up = static_cast<std::size_t>(p);
   if (T[ui + up] != T[ui]) r += S((t - T[ui]) / (T[ui + up] - T[ui]) * basis(T, i, p - 1, t));
-  if (T[ui + up + 1] != T[ui + 1]) r += S((T[ui + up + 1] - t) / (T[ui + up + 1] - T[ui + 1]) * basis(T, i + 1, p - 1, t));
+  if (T[ui + up + 1] != T[ui + 1])
+    r += S((T[ui + up + 1] - t) / (T[ui + up + 1] - T[ui + 1]) * basis(T, i + 1, p - 1, t));
   return r;
 }
 
@@ -63,7 +65,8 @@ void check_spline_ops(std::mt19937& g) {
   for (int p = 1; p <= 5; ++p)
     for (int mult = 1; mult <= p; ++mult) {
       const auto s = rand_spline<C>(g, p, mult);
-      const auto ins = kernel::insert_knot(kernel::insert_knot(s, S(5) / S(4), std::min(2, p)), S(1) / S(2));
+      const auto ins =
+          kernel::insert_knot(kernel::insert_knot(s, S(5) / S(4), std::min(2, p)), S(1) / S(2));
       const auto pieces = kernel::bezier_pieces(s);
       ASSERT_EQ(pieces.size(), 4u);
       const auto back = kernel::from_bezier_pieces(pieces, p, s.knots());
@@ -77,7 +80,8 @@ void check_spline_ops(std::mt19937& g) {
         ASSERT_TRUE(coef_near(kernel::evaluate(pieces[k], t), v, 1e-12));
       }
       // Reassembly gives back the same poles (exactly for rationals).
-      for (std::size_t i = 0; i < s.ctrl().size(); ++i) ASSERT_TRUE(coef_near(back.ctrl()[i], s.ctrl()[i], 1e-10));
+      for (std::size_t i = 0; i < s.ctrl().size(); ++i)
+        ASSERT_TRUE(coef_near(back.ctrl()[i], s.ctrl()[i], 1e-10));
     }
 }
 

@@ -71,7 +71,8 @@ TYPED_TEST(DualQuaternionTest, PoseMapsOriginToPositionAndComposes) {
     EXPECT_TRUE(coef_near(V4(ym), kernel::apply(p, xh)));
     // Composition: (P2 * P1) applies P1 first.
     const DQ p2 = rand_pose<S>(g);
-    EXPECT_TRUE(coef_near(kernel::apply_point(DQ(p2 * p), x), kernel::apply_point(p2, kernel::apply_point(p, x))));
+    EXPECT_TRUE(coef_near(kernel::apply_point(DQ(p2 * p), x),
+                          kernel::apply_point(p2, kernel::apply_point(p, x))));
     // Trans/Rot (9): Q = Trans(Q) * Rot(Q).
     EXPECT_TRUE(coef_near(DQ(kernel::trans_part(p) * kernel::rot_part(p)), p));
     // Points at infinity (directions) are only rotated.
@@ -79,7 +80,8 @@ TYPED_TEST(DualQuaternionTest, PoseMapsOriginToPositionAndComposes) {
     dir << S(0), x;
     const V4 yd = kernel::apply(p, dir);
     EXPECT_TRUE(coef_near(S(yd(0)), S(0)));
-    EXPECT_TRUE(coef_near(V3(yd.template tail<3>() / kernel::to_matrix4(p)(0, 0)), V3(kernel::rotation_matrix(r) * x)));
+    EXPECT_TRUE(coef_near(V3(yd.template tail<3>() / kernel::to_matrix4(p)(0, 0)),
+                          V3(kernel::rotation_matrix(r) * x)));
   }
 }
 

@@ -25,7 +25,8 @@ QMotion<S> tr_motion(std::mt19937& g, int k, int l) {
   for (int i = 0; i <= k; ++i) rot.push_back(rand_coef<Q>(g));
   rot[0] = Q::real(S(1));
   std::vector<DQ> trans;
-  for (int i = 0; i <= l; ++i) trans.push_back(DQ::translation(rand_coef<Eigen::Matrix<S, 3, 1>>(g)));
+  for (int i = 0; i <= l; ++i)
+    trans.push_back(DQ::translation(rand_coef<Eigen::Matrix<S, 3, 1>>(g)));
   const auto q = kernel::product(Bernstein<DQ>(trans), Bernstein<Q>(rot));
   return QMotion<S>{kernel::Basis::bezier, BSpline<DQ>::from_bezier(q)};
 }
@@ -46,7 +47,8 @@ TYPED_TEST(MotionTest, ProductMotionsSatisfyPluckerExactly) {
   // A generic dual-quaternion curve violates Plucker.
   std::vector<DualQuaternion<S>> c;
   for (int i = 0; i < 3; ++i) c.push_back(rand_coef<DualQuaternion<S>>(g));
-  const QMotion<S> bad{kernel::Basis::bezier, BSpline<DualQuaternion<S>>::from_bezier(Bernstein<DualQuaternion<S>>(c))};
+  const QMotion<S> bad{kernel::Basis::bezier,
+                       BSpline<DualQuaternion<S>>::from_bezier(Bernstein<DualQuaternion<S>>(c))};
   EXPECT_GT(kernel::to_double(kernel::plucker_residual(bad)), 1e-6);
 }
 
@@ -69,7 +71,8 @@ TYPED_TEST(MotionTest, MatrixAndTrajectorySplinesMatchPointwise) {
   }
   // Under a TR motion the origin's homogeneous trajectory carries the factor |Q_rot|^2;
   // a general point's does not reduce below 2k + l.
-  EXPECT_EQ(kernel::exact_degree(kernel::bezier_pieces(y)[0], kernel::is_exact_v<S> ? 0.0 : 1e-10), 6);
+  EXPECT_EQ(kernel::exact_degree(kernel::bezier_pieces(y)[0], kernel::is_exact_v<S> ? 0.0 : 1e-10),
+            6);
 }
 
 TEST(MotionPoles, FindsTheZeroOfTheRotationalPart) {
@@ -78,13 +81,15 @@ TEST(MotionPoles, FindsTheZeroOfTheRotationalPart) {
   // Q_rot(t) = (1 - 2t) + t k ... vanishes nowhere; (1-2t) alone vanishes at t = 1/2.
   const Bernstein<Q> rot({Q(1, 0, 0, 0), Q(-1, 0, 0, 0)});  // 1 - 2t: zero at 1/2
   const Bernstein<DQ> trans({DQ::translation(Eigen::Vector3d(1, 2, 3))});
-  const QMotion<double> m{kernel::Basis::bezier, BSpline<DQ>::from_bezier(kernel::product(trans, rot))};
+  const QMotion<double> m{kernel::Basis::bezier,
+                          BSpline<DQ>::from_bezier(kernel::product(trans, rot))};
   const auto poles = kernel::find_poles(m);
   ASSERT_EQ(poles.size(), 1u);
   EXPECT_NEAR(poles[0], 0.5, 1e-9);
   // A rotation that only gets small (|Q0| >= 0.1) is no pole.
   const Bernstein<Q> rot2({Q(1, 0, 0, 0), Q(-1, 0.1, 0, 0)});
-  const QMotion<double> m2{kernel::Basis::bezier, BSpline<DQ>::from_bezier(kernel::product(trans, rot2))};
+  const QMotion<double> m2{kernel::Basis::bezier,
+                           BSpline<DQ>::from_bezier(kernel::product(trans, rot2))};
   EXPECT_TRUE(kernel::find_poles(m2).empty());
 }
 

@@ -70,7 +70,8 @@ TEST(QuaternionDouble, AxisAngleAndMatrixRoundTrip) {
     const Eigen::Vector3d n = axis.normalized();
     EXPECT_TRUE(coef_near(Eigen::Vector3d(kernel::rotate(q, n)), n, 1e-14));
     const Eigen::Vector3d p = n.unitOrthogonal();
-    EXPECT_NEAR(std::acos(std::clamp(kernel::rotate(q, p).dot(p), -1.0, 1.0)), std::abs(angle), 1e-7);
+    EXPECT_NEAR(std::acos(std::clamp(kernel::rotate(q, p).dot(p), -1.0, 1.0)), std::abs(angle),
+                1e-7);
   }
   // Half turn: Shepperd's method must not divide by the small trace.
   const Q half = kernel::from_axis_angle(Eigen::Vector3d(1, 2, 2), M_PI);
