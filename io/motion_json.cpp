@@ -148,7 +148,15 @@ MotionFile parse_motion(const json& doc, const std::string& source) {
   return f;
 }
 
-MotionFile read_motion(const std::string& path) { return parse_motion(read_json_file(path), path); }
+MotionFile read_motion(const std::string& path) {
+  const std::string text = read_text_file(path);
+  MotionFile f = parse_motion(parse_json(text, path), path);
+  // The method block is metadata echoed back to users: keep its numbers as numbers (the
+  // text-preserving parse turns float literals into strings).
+  const json plain = json::parse(text, nullptr, /*allow_exceptions=*/false);
+  if (plain.is_object() && plain.contains("method")) f.method = plain["method"];
+  return f;
+}
 
 kernel::QMotion<double> to_motion_double(const MotionFile& f) {
   return build_motion<double>(f, [](const Number& n) { return n.value; });

@@ -8,6 +8,9 @@
 #include <sstream>
 
 #include "kernel/error.hpp"
+#ifdef QMOTION_WITH_CGAL
+#include "io/exact_number.hpp"
+#endif
 #include "kernel/quaternion.hpp"
 
 namespace qmotion::io {
@@ -280,6 +283,30 @@ std::vector<Pose<double>> to_poses_double(const PoseSet& set) {
   }
   return out;
 }
+
+#ifdef QMOTION_WITH_CGAL
+std::vector<Pose<kernel::Rational>> to_poses_exact(const PoseSet& set) {
+  std::vector<Pose<kernel::Rational>> out;
+  for (std::size_t i = 0; i < set.poses.size(); ++i) {
+    const auto& p = set.poses[i];
+    if (p.rotation.kind != RotationInput::Kind::quaternion)
+      throw Error(Errc::invalid_input,
+                  pose_where(set.source, i, "rotation") +
+                      ": exact mode needs the rotation as a quaternion (a rotation matrix or an "
+                      "axis and angle has no exact rational quaternion in general)");
+    Pose<kernel::Rational> q;
+    if (p.t) q.t = exact_from_text(p.t->text);
+    for (int k = 0; k < 3; ++k)
+      q.position(k) = exact_from_text(p.position[static_cast<std::size_t>(k)].text);
+    const auto& v = p.rotation.values;
+    q.rotation = kernel::Quaternion<kernel::Rational>(
+        exact_from_text(v[0].text), exact_from_text(v[1].text), exact_from_text(v[2].text),
+        exact_from_text(v[3].text));
+    out.push_back(q);
+  }
+  return out;
+}
+#endif
 
 json poses_to_json(const PoseSet& set) {
   // A decimal of at most 15 digits survives the trip through double (shortest round-trip

@@ -8,7 +8,11 @@
 #include <vector>
 
 #include "io/json_number.hpp"
-#include "kernel/dual_quaternion.hpp"
+#include "kernel/pose.hpp"
+
+#ifdef QMOTION_WITH_CGAL
+#include "kernel/cgal_scalar.hpp"
+#endif
 
 namespace qmotion::io {
 
@@ -37,17 +41,9 @@ struct PoseSet {
   bool has_t() const { return !poses.empty() && poses.front().t.has_value(); }
 };
 
-/// A pose in kernel numbers: P = (2 + eps s) * r of (14).
+/// A pose in kernel numbers (kernel/pose.hpp).
 template <typename Scalar>
-struct Pose {
-  std::optional<Scalar> t;
-  Eigen::Matrix<Scalar, 3, 1> position;
-  kernel::Quaternion<Scalar> rotation;  ///< non-zero, not necessarily unit
-
-  kernel::DualQuaternion<Scalar> dual_quaternion() const {
-    return kernel::DualQuaternion<Scalar>::pose(position, rotation);
-  }
-};
+using Pose = kernel::Pose<Scalar>;
 
 /// Reads poses from a .json or .csv file (by extension; other names are tried as JSON).
 PoseSet read_poses(const std::string& path);
@@ -61,6 +57,13 @@ PoseSet parse_poses_csv(const std::string& text, const std::string& source);
 
 /// Poses in double precision (rotations as unit quaternions with the file's sign).
 std::vector<Pose<double>> to_poses_double(const PoseSet& set);
+
+#ifdef QMOTION_WITH_CGAL
+/// Poses read exactly from their text (decimals and "p/q" alike). Only quaternion
+/// rotations have exact rational form in general: matrix and axis-angle rotations are
+/// refused (Errc::invalid_input naming the pose). Rotations keep the file's scale.
+std::vector<Pose<kernel::Rational>> to_poses_exact(const PoseSet& set);
+#endif
 
 /// The poses as JSON (SPEC §5), numbers written with their source text.
 nlohmann::json poses_to_json(const PoseSet& set);

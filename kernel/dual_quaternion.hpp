@@ -94,10 +94,14 @@ Scalar plucker(const DualQuaternion<Scalar>& q) {
   return q.real().dot(q.dual());
 }
 
-/// Plucker residual relative to |Q0|^2 (scale free). @pre Q0 != 0
+/// Plucker residual of one dual quaternion, scale free in both parts: |q0.qe| / (|Q0| |Qe|)
+/// (the cosine between real and dual part as 4-vectors); 0 when either part is zero.
 template <typename Scalar>
-Scalar plucker_residual(const DualQuaternion<Scalar>& q) {
-  return Scalar(abs_value(plucker(q)) / q.real().norm2());
+double plucker_residual(const DualQuaternion<Scalar>& q) {
+  const double r = std::sqrt(to_double(q.real().norm2())),
+               d = std::sqrt(to_double(q.dual().norm2()));
+  if (r == 0.0 || d == 0.0) return 0.0;
+  return std::abs(to_double(plucker(q))) / (r * d);
 }
 
 /// Trans(Q) = Q * conj(Q0) of (9): a translation 2v0 + eps v (up to a real factor).

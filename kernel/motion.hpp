@@ -2,6 +2,7 @@
 #pragma once
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "kernel/bspline.hpp"
@@ -97,18 +98,32 @@ BSpline<Eigen::Matrix<Scalar, 4, 1>> homogeneous_trajectory(const QMotion<Scalar
   return product(m.curve, m.curve, polar::PointImage<Scalar>{x});
 }
 
-/// Plucker residual of the whole motion: max |Plucker coefficient| / max |weight
-/// coefficient| over the Bernstein/B-spline coefficients of the two degree-2n splines.
-/// Exactly zero for an exact Q-motion in exact arithmetic.
+/// Largest real-part and dual-part coefficient magnitude of a motion (as double).
+template <typename Scalar>
+std::pair<double, double> coefficient_scales(const QMotion<Scalar>& m) {
+  double r = 0, d = 0;
+  for (const auto& c : m.curve.ctrl()) {
+    r = std::max(r, max_abs(c.real()));
+    d = std::max(d, max_abs(c.dual()));
+  }
+  return {r, d};
+}
+
+/// Plucker residual of the whole motion, normwise: max |Plucker coefficient| of the
+/// degree-2n spline Du(Q Q~)/2 divided by (largest real coefficient) x (largest dual
+/// coefficient), or by the largest real coefficient squared for a pure rotation. Scale
+/// free in both parts (positions in mm make the dual part large) and the natural measure
+/// of floating-point error; exactly zero for an exact Q-motion in exact arithmetic.
 template <typename Scalar>
 Scalar plucker_residual(const QMotion<Scalar>& m) {
-  const BSpline<Scalar> pl = plucker_spline(m), w = weight_spline(m);
-  Scalar num(0), den(0);
+  const BSpline<Scalar> pl = plucker_spline(m);
+  Scalar num(0);
   for (const auto& c : pl.ctrl()) num = std::max(num, abs_value(c));
-  for (const auto& c : w.ctrl()) den = std::max(den, abs_value(c));
-  if (den == Scalar(0))
+  if (num == Scalar(0)) return num;
+  const auto [r, d] = coefficient_scales(m);
+  if (r == 0.0)
     throw Error(Errc::numerical_failure, "motion with identically zero rotational part");
-  return Scalar(num / den);
+  return Scalar(num / Scalar(r * (d > 0.0 ? d : r)));
 }
 
 /// Zeros of the rotational part Q0(t) on [a, b] (poles of the motion: the trajectories

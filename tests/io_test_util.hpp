@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "kernel/error.hpp"
 
@@ -18,7 +19,7 @@ inline std::string shared_data(const std::string& rel) {
 
 /// Runs f, expecting a qmotion::Error with `code` whose message contains every needle.
 inline ::testing::AssertionResult throws_error(const std::function<void()>& f, Errc code,
-                                               std::initializer_list<std::string> needles) {
+                                               const std::vector<std::string>& needles) {
   try {
     f();
   } catch (const Error& e) {

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <vector>
 
 #include "io_test_util.hpp"
 
@@ -194,6 +195,126 @@ TEST(Cli, PosesConvertsCsvToJson) {
   EXPECT_EQ(j["poses"][1]["rotation"]["quaternion"], json({0.5, 0.5, 0.5, 0.5}));
   const json s = run_json({"poses", shared_data("poses/five_positions.json")});
   EXPECT_EQ(s["poses"], 5);
+}
+
+TEST(Cli, InterpolateWritesAMotionThatInterpolatesEveryPose) {
+  const fs::path out = scratch_dir() / "five.json";
+  const Result r =
+      run({"interpolate", shared_data("poses/five_positions.json"), "-o", out.string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json i = run_json({"info", out.string()});
+  EXPECT_EQ(i["degree"], 8);  // elliptic + TR, m = 4: k + m
+  EXPECT_EQ(i["order"], 12);  // 2k + l
+  EXPECT_EQ(i["order_source"], "construction");
+  EXPECT_LE(i["plucker_residual"].get<double>(), 1e-12);
+  ASSERT_EQ(i["interpolation_residual"].size(), 5u);
+  for (const auto& x : i["interpolation_residual"]) EXPECT_LE(x.get<double>(), 1e-10);
+  EXPECT_TRUE(i["poles"].empty());
+  EXPECT_EQ(i["method"]["rotation"], "elliptic");
+  EXPECT_EQ(i["method"]["param"], "given");
+  // eval at a pose parameter reproduces the pose: t = 0.25 is (40, 10, 5), 45 deg about z.
+  const json e = run_json({"eval", out.string(), "--t", "0.25"});
+  EXPECT_NEAR(e["position"][0].get<double>(), 40.0, 1e-9);
+  EXPECT_NEAR(e["position"][1].get<double>(), 10.0, 1e-9);
+  EXPECT_NEAR(e["position"][2].get<double>(), 5.0, 1e-9);
+  EXPECT_NEAR(e["quaternion"][0].get<double>(), std::cos(M_PI / 8), 1e-12);
+  EXPECT_NEAR(e["quaternion"][3].get<double>(), std::sin(M_PI / 8), 1e-12);
+}
+
+TEST(Cli, InterpolateEveryMethodAndRule) {
+  for (const std::string rot : {"elliptic", "affine", "projective"})
+    for (const std::string tr : {"tr", "trt", "minimal"})
+      for (const std::string param :
+           {"uniform", "chordal", "star-chordal", "centripetal", "angular", "angular-chordal"}) {
+        const fs::path out = scratch_dir() / "m.json";
+        const Result r =
+            run({"interpolate", shared_data("poses/three_positions_no_t.json"), "-o", out.string(),
+                 "--rotation", rot, "--translation", tr, "--param", param});
+        ASSERT_EQ(r.status, 0) << rot << " " << tr << " " << param << ": "
+                               << r.err;  // TRT: default split (1, 0)
+        const json i = run_json({"info", out.string()});
+        for (const auto& x : i["interpolation_residual"])
+          EXPECT_LE(x.get<double>(), 1e-10) << rot << tr << param;
+        EXPECT_EQ(i["method"]["param"], param);
+      }
+}
+
+TEST(Cli, InterpolateExactIsExact) {
+  for (const std::string tr : {"tr", "trt", "minimal"}) {
+    const fs::path out = scratch_dir() / ("exact_" + tr + ".json");
+    const Result r = run({"interpolate", shared_data("poses/rational_exact.json"), "--exact",
+                          "--translation", tr, "-o", out.string()});
+    ASSERT_EQ(r.status, 0) << r.err;
+    const json i = run_json({"info", "--exact", out.string()});
+    EXPECT_EQ(i["plucker_residual"], 0.0);
+    for (const auto& x : i["interpolation_residual"]) EXPECT_EQ(x.get<double>(), 0.0);
+    if (tr == "minimal") {
+      EXPECT_EQ(i["order"], 6);   // 2m, computed exactly (Theorem 6)
+      EXPECT_EQ(i["degree"], 9);  // 3m
+    }
+  }
+}
+
+TEST(Cli, InterpolateRefusalsExitWithTheirStatusAndLeaveNoFile) {
+  const std::string d = kData + "/refusals/";
+  struct Case {
+    std::vector<std::string> args;
+    int status;
+    std::string needle;
+  };
+  const std::vector<Case> cases = {
+      {{d + "half_turn.json", "--rotation", "affine"}, 3, "half-turn"},
+      {{d + "repeated_orientation.json", "--translation", "trt"}, 3, "rank-deficient"},
+      {{d + "six_poses.json", "--translation", "trt", "--trt-degrees", "2,2"},
+       2,
+       "singular for every data set"},
+      {{shared_data("poses/three_positions_no_t.json"), "--translation", "trt", "--trt-degrees",
+        "1,1"},
+       2,
+       "L1 + L2 = m - 1"},
+      {{shared_data("poses/three_positions_no_t.json"), "--translation", "trt", "--trt-degrees",
+        "x"},
+       2,
+       "--trt-degrees"},
+      {{kData + "/good_poses.csv", "--translation", "trt", "--trt-degrees", "0,1"}, 0, ""},
+      {{d + "projective_inaccessible.json", "--rotation", "projective"}, 3, "inaccessible"},
+      {{d + "projective_inaccessible.json", "--rotation", "projective", "--exact"},
+       3,
+       "inaccessible"},
+      {{shared_data("poses/helix_40.json"), "--form", "bezier"}, 3, "--form bspline"},
+      {{shared_data("poses/helix_40.json")}, 2, "not available yet"},
+      {{shared_data("poses/five_positions.json"), "--exact"}, 2, "pose 1"},
+      {{shared_data("poses/five_positions.json"), "--rotation", "slerp"}, 2, "--rotation"},
+      {{shared_data("poses/five_positions.json"), "--translation", "tt"}, 2, "--translation"},
+      {{shared_data("poses/five_positions.json"), "--param", "random"}, 2, "--param"},
+      {{shared_data("poses/three_positions_no_t.json"), "--param", "given"}, 2, "needs a t"},
+      {{shared_data("poses/five_positions.json"), "--degree", "3"}, 2, "--degree"},
+      {{shared_data("poses/five_positions.json"), "--trt-degrees", "3,0"}, 2, "--translation trt"},
+      {{shared_data("poses/bad/bad_nan.json")}, 2, "NaN"},
+  };
+  for (const auto& c : cases) {
+    const fs::path out = scratch_dir() / "refused.json";
+    fs::remove(out);
+    std::vector<std::string> args = {"interpolate"};
+    args.insert(args.end(), c.args.begin(), c.args.end());
+    args.insert(args.end(), {"-o", out.string()});
+    const Result r = run(args);
+    EXPECT_EQ(r.status, c.status) << c.args[0] << " " << (c.args.size() > 1 ? c.args[1] : "")
+                                  << ": " << r.err;
+    EXPECT_NE(r.err.find(c.needle), std::string::npos) << r.err;
+    EXPECT_EQ(fs::exists(out), c.status == 0) << c.args[0];
+  }
+  // Two poses: TRT is refused, TR works.
+  const fs::path two = scratch_dir() / "two.json";
+  std::ofstream(two) << R"({"poses":[{"position":[0,0,0],"rotation":{"quaternion":[1,0,0,0]}},)"
+                     << R"({"position":[5,1,0],"rotation":{"quaternion":[0.8,0,0.6,0]}}]})";
+  const Result trt = run({"interpolate", two.string(), "--translation", "trt", "-o",
+                          (scratch_dir() / "two_out.json").string()});
+  EXPECT_EQ(trt.status, 2);
+  EXPECT_NE(trt.err.find("two poses"), std::string::npos) << trt.err;
+  EXPECT_EQ(
+      run({"interpolate", two.string(), "-o", (scratch_dir() / "two_out.json").string()}).status,
+      0);
 }
 
 TEST(Cli, DemoExists) {
