@@ -56,7 +56,91 @@ json motion_json(const kernel::QMotion<Scalar>& m, const json& method, const std
   return doc;
 }
 
+/// Reads the recorded factors with the number conversion `conv`; nullopt when absent.
+template <typename Scalar, typename Conv>
+std::optional<sweep::MotionFactors<Scalar>> read_factors(const MotionFile& f,
+                                                         const kernel::QMotion<Scalar>& m,
+                                                         Conv conv) {
+  const json& me = f.method;
+  if (!me.is_object() || !me.contains("rotation_control_points") ||
+      !me.contains("translation_control_points") || !me.contains("translation"))
+    return std::nullopt;
+  const std::string where = f.source + ": method";
+  kernel::TranslationMethod method = kernel::TranslationMethod::tr;
+  const std::string tr = me["translation"].is_string() ? me["translation"].get<std::string>() : "";
+  if (tr == "tr") {
+    method = kernel::TranslationMethod::tr;
+  } else if (tr == "trt") {
+    method = kernel::TranslationMethod::trt;
+  } else if (tr == "minimal") {
+    method = kernel::TranslationMethod::minimal;
+  } else {
+    throw Error(Errc::invalid_input, where + ".translation: expected tr, trt or minimal");
+  }
+  auto knots_for = [&](const char* key, std::size_t poles) {
+    std::vector<Scalar> k;
+    if (me.contains(key)) {
+      for (const auto& n : read_numbers(me[key], where + "." + key)) k.push_back(conv(n));
+    } else {
+      k.assign(poles, m.a());
+      k.insert(k.end(), poles, m.b());
+    }
+    return k;
+  };
+  auto rows = [&](const char* key, std::size_t width) {
+    const json& a = me[key];
+    if (!a.is_array() || a.empty())
+      throw Error(Errc::invalid_input, where + "." + key + ": expected an array of control points");
+    std::vector<std::vector<Scalar>> r;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      const auto v = read_numbers(a[i], where + "." + key + "[" + std::to_string(i) + "]");
+      if (v.size() != width)
+        throw Error(Errc::invalid_input, where + "." + key + "[" + std::to_string(i) +
+                                             "]: expected " + std::to_string(width) + " numbers");
+      std::vector<Scalar> row;
+      for (const auto& n : v) row.push_back(conv(n));
+      r.push_back(row);
+    }
+    return r;
+  };
+  using V3 = Eigen::Matrix<Scalar, 3, 1>;
+  auto vec_spline = [&](const char* key, const char* knot_key) {
+    std::vector<V3> c;
+    for (const auto& r : rows(key, 3)) c.emplace_back(r[0], r[1], r[2]);
+    const std::size_t n = c.size();
+    std::vector<Scalar> k = knots_for(knot_key, n);
+    const int deg = static_cast<int>(k.size() - n) - 1;
+    return kernel::BSpline<V3>::make(deg, std::move(k), std::move(c));
+  };
+  std::vector<kernel::Quaternion<Scalar>> rc;
+  for (const auto& r : rows("rotation_control_points", 4)) rc.emplace_back(r[0], r[1], r[2], r[3]);
+  const std::size_t nr = rc.size();
+  std::vector<Scalar> rk = knots_for("rotation_knots", nr);
+  const int rdeg = static_cast<int>(rk.size() - nr) - 1;
+  sweep::MotionFactors<Scalar> out{
+      method, kernel::BSpline<kernel::Quaternion<Scalar>>::make(rdeg, std::move(rk), std::move(rc)),
+      vec_spline("translation_control_points", "translation_knots"), std::nullopt};
+  if (method == kernel::TranslationMethod::trt)
+    out.translation2 = vec_spline("translation2_control_points", "translation2_knots");
+  if (!sweep::factors_match(out, m))
+    return std::nullopt;  // edited apart from the motion: not trusted
+  return out;
+}
+
 }  // namespace
+
+std::optional<sweep::MotionFactors<double>> factors_double(const MotionFile& f,
+                                                           const kernel::QMotion<double>& m) {
+  return read_factors<double>(f, m, [](const Number& n) { return n.value; });
+}
+
+#ifdef QMOTION_WITH_CGAL
+std::optional<sweep::MotionFactors<kernel::Rational>> factors_exact(
+    const MotionFile& f, const kernel::QMotion<kernel::Rational>& m) {
+  return read_factors<kernel::Rational>(f, m,
+                                        [](const Number& n) { return exact_from_text(n.text); });
+}
+#endif
 
 MotionFile parse_motion(const json& doc, const std::string& source) {
   MotionFile f;

@@ -7,6 +7,7 @@
 
 #include "io/json_number.hpp"
 #include "kernel/motion.hpp"
+#include "sweep/factors.hpp"
 
 #ifdef QMOTION_WITH_CGAL
 #include "kernel/cgal_scalar.hpp"
@@ -36,6 +37,12 @@ MotionFile read_motion(const std::string& path);
 /// The motion in double precision.
 kernel::QMotion<double> to_motion_double(const MotionFile& f);
 
+/// The factors recorded in the file's method (qmotion interpolate writes them), if any and
+/// if they reproduce the motion; std::nullopt for hand-written files. Bezier factors cover
+/// param_range; "rotation_knots" / "translation_knots" give B-spline factors.
+std::optional<sweep::MotionFactors<double>> factors_double(const MotionFile& f,
+                                                           const kernel::QMotion<double>& m);
+
 /// A motion file document: numbers at full double precision.
 nlohmann::json motion_to_json(const kernel::QMotion<double>& m, const nlohmann::json& method,
                               const std::string& units = "mm");
@@ -43,6 +50,9 @@ nlohmann::json motion_to_json(const kernel::QMotion<double>& m, const nlohmann::
 #ifdef QMOTION_WITH_CGAL
 /// The motion read exactly (every decimal and "p/q" as the rational it denotes).
 kernel::QMotion<kernel::Rational> to_motion_exact(const MotionFile& f);
+/// The recorded factors read exactly.
+std::optional<sweep::MotionFactors<kernel::Rational>> factors_exact(
+    const MotionFile& f, const kernel::QMotion<kernel::Rational>& m);
 /// A motion file document with every number an exact "p/q" string.
 nlohmann::json motion_to_json(const kernel::QMotion<kernel::Rational>& m,
                               const nlohmann::json& method, const std::string& units = "mm");

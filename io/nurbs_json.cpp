@@ -83,4 +83,47 @@ sweep::NurbsCurve<double> curve_from_json(const json& j, const std::string& wher
   return c;
 }
 
+sweep::NurbsSurface<double> surface_from_json(const json& j, const std::string& where) {
+  const json& type = require(j, "type", where);
+  if (type != "nurbs_surface")
+    throw Error(Errc::invalid_input,
+                where + ": type: expected \"nurbs_surface\", found " + type.dump());
+  sweep::NurbsSurface<double> s;
+  for (const char* key : {"degree_u", "degree_v"}) {
+    const json& d = require(j, key, where);
+    if (!d.is_number_integer() || d.get<int>() < 1)
+      throw Error(Errc::invalid_input, where + ": " + key + ": expected an integer >= 1");
+  }
+  s.degree_u = j["degree_u"].get<int>();
+  s.degree_v = j["degree_v"].get<int>();
+  s.knots_u = read_array(require(j, "knots_u", where), where + ": knots_u");
+  s.knots_v = read_array(require(j, "knots_v", where), where + ": knots_v");
+  const json& pts = require(j, "control_points", where);
+  const json& w = require(j, "weights", where);
+  if (!pts.is_array() || pts.empty() || !w.is_array() || w.size() != pts.size())
+    throw Error(Errc::invalid_input,
+                where + ": control_points and weights must be arrays of equal length");
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    const std::string wi = where + ": control_points[" + std::to_string(i) + "]";
+    if (!pts[i].is_array() || pts[i].size() != pts[0].size())
+      throw Error(Errc::invalid_input, wi + ": rows must have equal length");
+    s.points.emplace_back();
+    s.weights.push_back(read_array(w[i], where + ": weights[" + std::to_string(i) + "]"));
+    if (s.weights.back().size() != pts[i].size())
+      throw Error(Errc::invalid_input,
+                  where + ": weights[" + std::to_string(i) + "]: wrong length");
+    for (std::size_t k = 0; k < pts[i].size(); ++k) {
+      const auto p = read_array(pts[i][k], wi + "[" + std::to_string(k) + "]");
+      if (p.size() != 3)
+        throw Error(Errc::invalid_input, wi + "[" + std::to_string(k) + "]: expected 3 numbers");
+      s.points.back().emplace_back(p[0], p[1], p[2]);
+    }
+  }
+  auto iu = kernel::BSpline<double>::validate(s.degree_u, s.knots_u, s.points.size());
+  if (!iu.empty()) throw Error(Errc::invalid_input, where + ": u: " + iu.front());
+  auto iv = kernel::BSpline<double>::validate(s.degree_v, s.knots_v, s.points.front().size());
+  if (!iv.empty()) throw Error(Errc::invalid_input, where + ": v: " + iv.front());
+  return s;
+}
+
 }  // namespace qmotion::io

@@ -16,4 +16,7 @@ nlohmann::json surface_to_json(const sweep::NurbsSurface<double>& s);
 /// weights); throws Errc::invalid_input naming `where` and the field.
 sweep::NurbsCurve<double> curve_from_json(const nlohmann::json& j, const std::string& where);
 
+/// Reads and validates a nurbs_surface (SPEC §4 layout); throws Errc::invalid_input.
+sweep::NurbsSurface<double> surface_from_json(const nlohmann::json& j, const std::string& where);
+
 }  // namespace qmotion::io

@@ -1,6 +1,7 @@
 // sweep/nurbs.hpp
 #pragma once
 #include <Eigen/Core>
+#include <algorithm>
 #include <vector>
 
 #include "kernel/bspline.hpp"

@@ -3,17 +3,22 @@
 
 #include <CLI/CLI.hpp>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <sstream>
 
 #include "io/atomic_file.hpp"
+#include "io/cli/geometry.hpp"
 #ifdef QMOTION_WITH_CGAL
 #include "io/exact_number.hpp"
 #endif
 #include "io/json_number.hpp"
 #include "io/motion_json.hpp"
+#include "io/nurbs_json.hpp"
 #include "io/occt_info.hpp"
 #include "io/poses.hpp"
+#include "io/profiles.hpp"
 #include "kernel/error.hpp"
 #include "kernel/interpolation.hpp"
 #include "kernel/motion.hpp"
@@ -24,17 +29,6 @@ namespace qmotion::cli {
 namespace {
 
 using json = nlohmann::json;
-
-/// Parses "x,y,z" given to `flag`.
-Eigen::Vector3d parse_point(const std::string& text, const std::string& flag) {
-  std::vector<double> v;
-  std::stringstream ss(text);
-  std::string cell;
-  while (std::getline(ss, cell, ',')) v.push_back(io::parse_number_text(cell, flag).value);
-  if (v.size() != 3)
-    throw Error(Errc::invalid_input, flag + ": expected three numbers x,y,z, found '" + text + "'");
-  return Eigen::Vector3d(v[0], v[1], v[2]);
-}
 
 json vec_json(const Eigen::Vector3d& v) { return json{v(0), v(1), v(2)}; }
 
@@ -401,13 +395,128 @@ int cmd_poses(const std::string& path, const std::string& out_path) {
   return 0;
 }
 
+/// The five sample poses of the demo (the shared five_positions.json).
+constexpr const char* kDemoPoses = R"({"units":"mm","poses":[
+ {"t":0.0,"position":[0,0,0],"rotation":{"quaternion":[1,0,0,0]}},
+ {"t":0.25,"position":[40,10,5],"rotation":{"axis_angle":{"axis":[0,0,1],"angle_deg":45}}},
+ {"t":0.5,"position":[70,40,20],"rotation":{"axis_angle":{"axis":[1,1,0],"angle_deg":80}}},
+ {"t":0.75,"position":[90,80,10],"rotation":{"quaternion":[0.5,0.162937633978,0.81468816989,0.244406450967]}},
+ {"t":1.0,"position":[120,100,0],"rotation":{"axis_angle":{"axis":[0,1,1],"angle_deg":150}}}]})";
+
+/// An isometric SVG of the trajectories and of the profile at nine instants.
+std::string demo_svg(const LoadedMotion& lm, const sweep::NurbsCurve<double>& profile) {
+  auto proj = [](const Eigen::Vector3d& p) {
+    return Eigen::Vector2d((p.x() - p.y()) * 0.8660254037844386, -(p.x() + p.y()) * 0.5 - p.z());
+  };
+  std::vector<std::vector<Eigen::Vector2d>> lines;
+  std::vector<std::string> colors;
+  for (const Eigen::Vector3d& x :
+       std::vector<Eigen::Vector3d>{Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0, 0, 20)}) {
+    lines.emplace_back();
+    colors.push_back(lines.size() == 1 ? "#c0392b" : "#2471a3");
+    for (int i = 0; i <= 200; ++i)
+      lines.back().push_back(proj(kernel::apply_point(
+          kernel::evaluate(lm.motion, lm.motion.a() + (lm.motion.b() - lm.motion.a()) * i / 200.0),
+          x)));
+  }
+  for (int k = 0; k <= 8; ++k) {
+    const auto q =
+        kernel::evaluate(lm.motion, lm.motion.a() + (lm.motion.b() - lm.motion.a()) * k / 8.0);
+    lines.emplace_back();
+    colors.push_back("#555555");
+    for (int j = 0; j <= 40; ++j)
+      lines.back().push_back(proj(kernel::apply_point(q, sweep::evaluate(profile, j / 40.0))));
+  }
+  Eigen::Vector2d lo = lines[0][0], hi = lines[0][0];
+  for (const auto& l : lines)
+    for (const auto& p : l) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+  const double pad = 10, scale = std::min(760.0 / std::max(hi.x() - lo.x(), 1e-9),
+                                          700.0 / std::max(hi.y() - lo.y(), 1e-9));
+  std::ostringstream os;
+  os << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\""
+     << static_cast<int>((hi.x() - lo.x()) * scale + 2 * pad) << "\" height=\""
+     << static_cast<int>((hi.y() - lo.y()) * scale + 2 * pad + 30)
+     << "\">\n<text x=\"10\" y=\"18\" font-family=\"sans-serif\" font-size=\"11\">elliptic + TR "
+        "motion, five poses. red: origin; "
+        "blue: (0,0,20); grey: parabola at t = k/8</text>\n";
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    os << "<polyline fill=\"none\" stroke=\"" << colors[i] << "\" stroke-width=\"1.5\" points=\"";
+    for (const auto& p : lines[i])
+      os << (p.x() - lo.x()) * scale + pad << "," << (p.y() - lo.y()) * scale + pad + 30 << " ";
+    os << "\"/>\n";
+  }
+  os << "</svg>\n";
+  return os.str();
+}
+
 int cmd_demo(const std::string& dir) {
-  std::cout << "qmotion demo: not yet. The demo (five poses -> elliptic + TR motion -> "
-               "trajectories and a\n"
-               "kinematic surface written as STEP, IGES and JSON) arrives with interpolation and "
-               "sweeps.\n"
-               "Output folder requested: "
-            << dir << " (nothing written).\n";
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec || !fs::is_directory(dir))
+    throw Error(Errc::invalid_input, "-o " + dir + ": cannot create the output folder");
+  // Build everything in a scratch folder first: a failure leaves nothing behind.
+  const fs::path tmp = fs::path(dir) / (".qmotion-demo-" + std::to_string(::getpid()));
+  fs::remove_all(tmp);
+  fs::create_directories(tmp);
+  struct Cleanup {
+    fs::path p;
+    ~Cleanup() {
+      std::error_code e;
+      fs::remove_all(p, e);
+    }
+  } cleanup{tmp};
+
+  const io::PoseSet set = io::parse_poses_json(kDemoPoses, "embedded demo poses");
+  const auto poses = io::to_poses_double(set);
+  const auto t = kernel::parametrize(poses, kernel::ParamRule::given);
+  kernel::InterpolationOptions opt;  // elliptic + TR (Algorithm 1)
+  json method{{"rotation", "elliptic"}, {"translation", "tr"},
+              {"param", "given"},       {"form", "bezier"},
+              {"exact", false},         {"input_poses", io::poses_to_json(set)}};
+  std::string summary;
+  const json motion_doc = run_interpolation(poses, t, opt, method, set.units, summary);
+  io::write_file_atomic((tmp / "motion.json").string(), motion_doc.dump(1) + "\n");
+  const LoadedMotion lm = load_motion(io::parse_motion(motion_doc, "motion.json"));
+  // The paper's Figure 5 idea: a parabola of the moving space swept by the motion.
+  const sweep::NurbsCurve<double> parabola{
+      2, {0, 0, 0, 1, 1, 1}, {{-10, 0, 10}, {0, 0, -10}, {10, 0, 10}}, {1, 1, 1}};
+  io::write_file_atomic((tmp / "parabola.json").string(),
+                        io::curve_to_json(parabola).dump(1) + "\n");
+
+  json report = json::array();
+  for (const std::string ext : {".json", ".step", ".igs"}) {
+    for (const auto& [name, point] :
+         {std::make_pair(std::string("trajectory_origin"), Eigen::Vector3d(0, 0, 0)),
+          std::make_pair(std::string("trajectory_0_0_1"), Eigen::Vector3d(0, 0, 1))}) {
+      GeometryOptions go;
+      go.output = (tmp / (name + ext)).string();
+      const auto r = export_trajectory(lm, point, go);
+      json c = check_geometry(go.output, lm, std::nullopt, point);
+      c["file"] = name + ext;
+      c["degree"] = r.degree_u;
+      report.push_back(c);
+    }
+    GeometryOptions go;
+    go.output = (tmp / ("surface_parabola" + ext)).string();
+    export_surface(lm, parabola, "a parabola", go);
+    json c = check_geometry(go.output, lm, parabola, std::nullopt);
+    c["file"] = "surface_parabola" + ext;
+    report.push_back(c);
+  }
+  io::write_file_atomic((tmp / "demo.svg").string(), demo_svg(lm, parabola));
+  const json doc{{"motion", {{"file", "motion.json"}, {"summary", summary}}},
+                 {"exactness", report}};
+  io::write_file_atomic((tmp / "report.json").string(), doc.dump(2) + "\n");
+  for (const auto& e : fs::directory_iterator(tmp))
+    fs::rename(e.path(), fs::path(dir) / e.path().filename());
+  std::cout << doc.dump(2) << "\n";
+  std::cerr
+      << "qmotion: demo written to " << dir
+      << " (motion.json, trajectories and surface as JSON/STEP/IGES, demo.svg, report.json)\n";
   return 0;
 }
 
@@ -479,8 +588,54 @@ int run(int argc, char** argv) {
   poses->add_option("POSES", poses_path, "Pose file (.json or .csv)")->required();
   poses->add_option("-o,--output", poses_out, "Write the poses as JSON (SPEC §5) to this file");
 
+  auto* traj = app.add_subcommand(
+      "trajectory", "Write the exact rational trajectory of a point as NURBS (JSON, STEP or IGES)");
+  std::string traj_motion, traj_point;
+  GeometryOptions traj_opt;
+  traj->add_option("MOTION", traj_motion, "Motion JSON file")->required();
+  traj->add_option("--point", traj_point, "Point x,y,z of the moving space")->required();
+  traj->add_option("-o,--output", traj_opt.output, "Output .json, .step/.stp or .igs/.iges")
+      ->required();
+  traj->add_option("--max-degree", traj_opt.max_degree,
+                   "Approximate (measured, within --tol) when the exact degree is above D");
+  traj->add_option(
+      "--tol", traj_opt.tol,
+      "Approximation tolerance in length units (default 1e-6 of the bounding-box diagonal)");
+  traj->add_option("--units", traj_opt.units, "Declared length unit (default: the motion's)");
+
+  auto* swp = app.add_subcommand(
+      "sweep",
+      "Write the kinematic surface M(t) x(v) of a profile as NURBS (JSON, STEP, IGES; STL mesh)");
+  std::string swp_motion, swp_profile;
+  GeometryOptions swp_opt;
+  swp->add_option("MOTION", swp_motion, "Motion JSON file")->required();
+  swp->add_option("--profile", swp_profile,
+                  "Profile: nurbs_curve .json, .step/.igs (first edge), segment:x0,y0,z0:x1,y1,z1, "
+                  "circle:r, arc:r,a0,a1")
+      ->required();
+  swp->add_option("-o,--output", swp_opt.output, "Output .json, .step/.stp, .igs/.iges or .stl")
+      ->required();
+  swp->add_option("--max-degree", swp_opt.max_degree,
+                  "Approximate along the motion (measured, within --tol) above degree D");
+  swp->add_option(
+      "--tol", swp_opt.tol,
+      "Approximation tolerance in length units (default 1e-6 of the bounding-box diagonal)");
+  swp->add_option("--units", swp_opt.units, "Declared length unit (default: the motion's)");
+
+  auto* chk = app.add_subcommand("check",
+                                 "Measure the deviation of a written NURBS (JSON, or STEP/IGES "
+                                 "read through OpenCASCADE) from the motion");
+  std::string chk_file, chk_motion, chk_profile, chk_point;
+  int chk_grid = 41;
+  chk->add_option("GEOMETRY", chk_file, "The .json, .step/.stp or .igs/.iges file to check")
+      ->required();
+  chk->add_option("--motion", chk_motion, "Motion JSON file")->required();
+  chk->add_option("--profile", chk_profile, "The profile the surface was swept from");
+  chk->add_option("--point", chk_point, "The point whose trajectory the curve is");
+  chk->add_option("--grid", chk_grid, "Lattice size per direction (plus 400 random samples)");
+
   auto* demo = app.add_subcommand("demo", "Run the main job on the embedded five sample poses");
-  std::string demo_dir = "qmotion-demo";
+  std::string demo_dir = "demo-out";
   demo->add_option("-o,--output", demo_dir, "Output folder");
 
   try {
@@ -502,6 +657,41 @@ int run(int argc, char** argv) {
   if (*eval) return cmd_eval(eval_path, eval_t, eval_point);
   if (*interp) return cmd_interpolate(ia);
   if (*poses) return cmd_poses(poses_path, poses_out);
+  if (*traj) {
+    const auto r =
+        export_trajectory(load_motion(traj_motion), parse_point(traj_point, "--point"), traj_opt);
+    std::cerr << "qmotion: wrote " << r.path << " (degree " << r.degree_u << ", "
+              << r.inserted_knots << " knots inserted for positive weights"
+              << (r.approx_deviation ? ", approximation with measured deviation " +
+                                           std::to_string(*r.approx_deviation)
+                                     : std::string(""))
+              << ")\n";
+    return 0;
+  }
+  if (*swp) {
+    const LoadedMotion lm = load_motion(swp_motion);
+    const auto profile = io::read_profile(swp_profile, lm.file.units);
+    const auto r = export_surface(lm, profile, swp_profile, swp_opt);
+    std::cerr << "qmotion: wrote " << r.path << " (degrees " << r.degree_u << " x " << r.degree_v
+              << (r.approx_deviation ? ", approximation with measured deviation " +
+                                           std::to_string(*r.approx_deviation)
+                                     : std::string(""))
+              << ")\n";
+    return 0;
+  }
+  if (*chk) {
+    if (chk_profile.empty() == chk_point.empty())
+      throw Error(Errc::invalid_input, "check: give exactly one of --profile and --point");
+    const LoadedMotion lm = load_motion(chk_motion);
+    std::optional<sweep::NurbsCurve<double>> profile;
+    std::optional<Eigen::Vector3d> point;
+    if (!chk_profile.empty()) profile = io::read_profile(chk_profile, lm.file.units);
+    if (!chk_point.empty()) point = parse_point(chk_point, "--point");
+    if (chk_grid < 1 || chk_grid > 1000)
+      throw Error(Errc::invalid_input, "--grid: expected 1 to 1000");
+    std::cout << check_geometry(chk_file, lm, profile, point, chk_grid).dump(2) << "\n";
+    return 0;
+  }
   if (*demo) return cmd_demo(demo_dir);
   std::cout << app.help();
   return 2;

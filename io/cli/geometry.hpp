@@ -1,0 +1,56 @@
+// io/cli/geometry.hpp: trajectories, kinematic surfaces and the exactness check, shared
+// by their commands and the demo.
+#pragma once
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "io/motion_json.hpp"
+#include "sweep/factors.hpp"
+#include "sweep/nurbs.hpp"
+
+namespace qmotion::cli {
+
+/// A motion file with its double motion and, when recorded and consistent, its factors.
+struct LoadedMotion {
+  io::MotionFile file;
+  kernel::QMotion<double> motion;
+  std::optional<sweep::MotionFactors<double>> factors;
+};
+
+LoadedMotion load_motion(const std::string& path);
+LoadedMotion load_motion(const io::MotionFile& file);
+
+struct GeometryOptions {
+  std::string output;   ///< .json, .step/.stp, .igs/.iges (surfaces also .stl)
+  int max_degree = -1;  ///< approximate above this degree (-1: exact only)
+  double tol = -1;      ///< approximation tolerance (absolute; default 1e-6 x diagonal)
+  std::string units;    ///< declared unit (default: the motion's)
+};
+
+/// What was written, for messages and the demo's report.
+struct ExportResult {
+  std::string path;
+  int degree_u = 0, degree_v = 0;
+  int inserted_knots = 0;                  ///< for positive weights
+  std::optional<double> approx_deviation;  ///< set when --max-degree approximated
+  double min_weight = 0;
+};
+
+ExportResult export_trajectory(const LoadedMotion& lm, const Eigen::Vector3d& point,
+                               const GeometryOptions& opt);
+ExportResult export_surface(const LoadedMotion& lm, const sweep::NurbsCurve<double>& profile,
+                            const std::string& profile_name, const GeometryOptions& opt);
+
+/// The exactness check: the file's NURBS (read back through OpenCASCADE for STEP/IGES)
+/// against the motion applied to the profile (surfaces) or to the point (curves), on a
+/// grid x grid lattice plus 400 random parameters. JSON report.
+nlohmann::json check_geometry(const std::string& file, const LoadedMotion& lm,
+                              const std::optional<sweep::NurbsCurve<double>>& profile,
+                              const std::optional<Eigen::Vector3d>& point, int grid = 41);
+
+/// Parses "x,y,z" given to `flag`.
+Eigen::Vector3d parse_point(const std::string& text, const std::string& flag);
+
+}  // namespace qmotion::cli

@@ -1,0 +1,65 @@
+// io/occt.hpp
+#pragma once
+// STEP and IGES through OpenCASCADE. No OpenCASCADE type appears here: handles, 1-based
+// arrays and knot/multiplicity pairs stay in occt.cpp (STYLE §4, §9).
+#include <Eigen/Core>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "sweep/nurbs.hpp"
+
+namespace qmotion::io {
+
+/// Metadata written into STEP/IGES headers.
+struct ExportInfo {
+  std::string units = "mm";  ///< mm, cm, m, in, ft, um: declared in the file, numbers in it
+  std::string product = "qmotion";
+  std::string description;  ///< e.g. the motion file the geometry came from
+};
+
+/// Maximum B-spline degree OpenCASCADE stores (Geom_BSplineCurve::MaxDegree()).
+int occt_max_degree();
+
+/// Writes one face bounded by the surface's natural boundary (AP214), every real with 17
+/// significant digits, the declared unit `info.units`. Atomic (SPEC §6). Throws
+/// Errc::export_failed when OpenCASCADE refuses the geometry.
+void write_step(const std::string& path, const sweep::NurbsSurface<double>& s,
+                const ExportInfo& info);
+/// Writes the curve as one edge.
+void write_step(const std::string& path, const sweep::NurbsCurve<double>& c,
+                const ExportInfo& info);
+/// IGES 5.3: entity 128 (rational B-spline surface), full precision, declared unit.
+void write_iges(const std::string& path, const sweep::NurbsSurface<double>& s,
+                const ExportInfo& info);
+/// IGES 5.3: entity 126 (rational B-spline curve).
+void write_iges(const std::string& path, const sweep::NurbsCurve<double>& c,
+                const ExportInfo& info);
+
+/// Geometry read back from a STEP or IGES file through OpenCASCADE.
+struct CadGeometry {
+  bool is_surface = false;
+  sweep::NurbsSurface<double> surface;  ///< first face's surface as NURBS (is_surface)
+  sweep::NurbsCurve<double> curve;      ///< first edge's curve as NURBS (otherwise)
+  /// Evaluation by OpenCASCADE itself (Geom_BSplineSurface/Curve::Value): (u, v) or (t, -).
+  std::function<Eigen::Vector3d(double, double)> value;
+  int faces = 0, edges = 0;
+  bool valid = false;      ///< BRepCheck_Analyzer on the whole shape
+  std::string file_units;  ///< the length unit the file declares (lower case, e.g. "mm")
+};
+
+/// Reads a STEP (.step/.stp) or IGES (.igs/.iges) file, converting lengths to `units`.
+/// With `want_surface`, the first face's surface; else the first edge's curve. Curves and
+/// surfaces of other types are converted to NURBS (exactly for lines, conics and B-splines).
+/// Throws Errc::invalid_input naming the file when it cannot be read or holds no such
+/// geometry.
+CadGeometry read_cad(const std::string& path, bool want_surface, const std::string& units = "mm");
+
+/// Full clamped knot vector <-> distinct knots and multiplicities (the OpenCASCADE/STEP/
+/// IGES convention); one conversion each way (STYLE §9).
+void knots_to_distinct(const std::vector<double>& full, std::vector<double>& distinct,
+                       std::vector<int>& mults);
+std::vector<double> knots_from_distinct(const std::vector<double>& distinct,
+                                        const std::vector<int>& mults);
+
+}  // namespace qmotion::io

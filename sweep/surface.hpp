@@ -1,0 +1,130 @@
+// sweep/surface.hpp
+#pragma once
+#include <optional>
+#include <vector>
+
+#include "sweep/nurbs.hpp"
+#include "sweep/trajectory.hpp"
+#include "sweep/weights.hpp"
+
+namespace qmotion::sweep {
+
+/// A rational tensor-product surface in homogeneous form: poles[i][j] = (w, w x, w y, w z),
+/// i along u (the motion parameter), j along v (the profile parameter).
+template <typename Scalar>
+struct HomogeneousSurface {
+  int degree_u = 0, degree_v = 0;
+  std::vector<Scalar> knots_u, knots_v;
+  std::vector<std::vector<Vec4<Scalar>>> poles;
+};
+
+/// Homogeneous trajectories of the homogeneous points X_j, all with one degree and knot
+/// vector: from the factors when given, else from the motion with the elevation common to
+/// all of them stripped.
+template <typename Scalar>
+std::vector<kernel::BSpline<Vec4<Scalar>>> trajectories(
+    const kernel::QMotion<Scalar>& m, const std::optional<MotionFactors<Scalar>>& f,
+    const std::vector<Vec4<Scalar>>& X) {
+  std::vector<kernel::BSpline<Vec4<Scalar>>> cols;
+  if (f) {
+    for (const auto& x : X) cols.push_back(trajectory_from_factors(*f, x, /*uniform_degree=*/true));
+    return cols;
+  }
+  for (const auto& x : X) cols.push_back(kernel::homogeneous_trajectory(m, x));
+  if (m.segments() == 1) {
+    int d = 0;
+    for (const auto& c : cols) d = std::max(d, kernel::exact_degree(kernel::bezier_pieces(c)[0]));
+    for (auto& c : cols) {
+      const auto r = kernel::reduce_degree(kernel::bezier_pieces(c)[0]);
+      c = kernel::BSpline<Vec4<Scalar>>::from_bezier(kernel::elevate(r, d - r.degree()));
+    }
+  }
+  return cols;
+}
+
+/// The kinematic surface y(t, v) = M(t) x(v) of a rational profile (SPEC §2.7): its
+/// homogeneous poles are the u-poles of the trajectories of the profile's homogeneous
+/// poles X_j = (w_j, w_j x_j), since M(t) acts linearly. Exact, no fitting; u is t. Knots
+/// are inserted along u until every weight is positive (SPEC §4).
+template <typename Scalar>
+HomogeneousSurface<Scalar> kinematic_surface(const kernel::QMotion<Scalar>& m,
+                                             const std::optional<MotionFactors<Scalar>>& f,
+                                             const NurbsCurve<Scalar>& profile) {
+  std::vector<Vec4<Scalar>> X;
+  for (std::size_t j = 0; j < profile.points.size(); ++j) {
+    Vec4<Scalar> x;
+    x << profile.weights[j], profile.points[j] * profile.weights[j];
+    X.push_back(x);
+  }
+  auto cols = trajectories(m, f, X);
+  // Every column's weight function is w_j times the motion's: one refinement serves all.
+  const auto extra = knots_for_positive_weights(cols.front());
+  HomogeneousSurface<Scalar> s;
+  for (auto& c : cols) c = insert_knots(c, extra);
+  s.degree_u = cols.front().degree();
+  s.degree_v = profile.degree;
+  s.knots_u = cols.front().knots();
+  s.knots_v = profile.knots;
+  s.poles.assign(cols.front().ctrl().size(), std::vector<Vec4<Scalar>>(cols.size()));
+  for (std::size_t j = 0; j < cols.size(); ++j)
+    for (std::size_t i = 0; i < cols[j].ctrl().size(); ++i) s.poles[i][j] = cols[j].ctrl()[i];
+  return s;
+}
+
+/// The trajectory of the Cartesian point x as a homogeneous spline with positive weights,
+/// at its minimal degree (factors) or with elevation stripped (motion only).
+template <typename Scalar>
+kernel::BSpline<Vec4<Scalar>> trajectory(const kernel::QMotion<Scalar>& m,
+                                         const std::optional<MotionFactors<Scalar>>& f,
+                                         const Eigen::Matrix<Scalar, 3, 1>& x) {
+  Vec4<Scalar> X;
+  X << Scalar(1), x;
+  auto h = f ? trajectory_from_factors(*f, X) : trajectory_from_motion(m, X);
+  return insert_knots(h, knots_for_positive_weights(h));
+}
+
+/// Weights scaled so that the largest is 1 (the homogeneous scale is free).
+template <typename Scalar>
+NurbsSurface<Scalar> to_nurbs(const HomogeneousSurface<Scalar>& h) {
+  Scalar wmax(0);
+  for (const auto& row : h.poles)
+    for (const auto& p : row) wmax = std::max(wmax, p(0));
+  NurbsSurface<Scalar> s;
+  s.degree_u = h.degree_u;
+  s.degree_v = h.degree_v;
+  s.knots_u = h.knots_u;
+  s.knots_v = h.knots_v;
+  for (const auto& row : h.poles) {
+    s.points.emplace_back();
+    s.weights.emplace_back();
+    for (const auto& p : row) {
+      if (!(p(0) > Scalar(0)))
+        throw Error(Errc::numerical_failure, "a surface weight is not positive");
+      s.points.back().push_back((p.template tail<3>() / p(0)).eval());
+      s.weights.back().push_back(Scalar(p(0) / wmax));
+    }
+  }
+  return s;
+}
+
+/// Point of a NURBS surface at (u, v) (homogeneous de Boor in v of the u-curves).
+template <typename Scalar>
+Eigen::Matrix<Scalar, 3, 1> evaluate(const NurbsSurface<Scalar>& s, const Scalar& u,
+                                     const Scalar& v) {
+  std::vector<Vec4<Scalar>> col;
+  for (std::size_t j = 0; j < s.points.front().size(); ++j) {
+    std::vector<Vec4<Scalar>> c;
+    for (std::size_t i = 0; i < s.points.size(); ++i) {
+      Vec4<Scalar> p;
+      p << s.weights[i][j], s.points[i][j] * s.weights[i][j];
+      c.push_back(p);
+    }
+    col.push_back(
+        kernel::evaluate(kernel::BSpline<Vec4<Scalar>>::make(s.degree_u, s.knots_u, c), u));
+  }
+  const Vec4<Scalar> h =
+      kernel::evaluate(kernel::BSpline<Vec4<Scalar>>::make(s.degree_v, s.knots_v, col), v);
+  return (h.template tail<3>() / h(0)).eval();
+}
+
+}  // namespace qmotion::sweep

@@ -1,0 +1,256 @@
+// tests/sweep/sweep_test.cpp mirrors sweep/trajectory.hpp, sweep/surface.hpp,
+// sweep/weights.hpp, sweep/profiles.hpp, sweep/approximate.hpp
+#include <cmath>
+#include <random>
+
+#include "io/nurbs_json.hpp"
+#include "io/poses.hpp"
+#include "io_test_util.hpp"
+#include "kernel/parametrization.hpp"
+#include "sweep/approximate.hpp"
+#include "sweep/profiles.hpp"
+#include "sweep/surface.hpp"
+#include "test_util.hpp"
+
+namespace qmotion::test {
+namespace {
+using kernel::RotationMethod;
+using kernel::TranslationMethod;
+using V3 = Eigen::Vector3d;
+
+const std::optional<sweep::MotionFactors<double>> kNoFactors;
+
+struct Built {
+  kernel::Interpolation<double> r;
+  sweep::MotionFactors<double> f;
+};
+
+Built build(const std::vector<kernel::Pose<double>>& P, RotationMethod rot, TranslationMethod tr) {
+  kernel::InterpolationOptions o;
+  o.rotation = rot;
+  o.translation = tr;
+  auto r = kernel::interpolate_bezier(P, kernel::parametrize(P, kernel::ParamRule::given), o);
+  auto f = sweep::factors_of(r, tr);
+  return Built{std::move(r), std::move(f)};
+}
+
+double diag(const std::vector<V3>& pts) {
+  V3 lo = pts[0], hi = pts[0];
+  for (const auto& p : pts) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  return (hi - lo).norm();
+}
+
+/// Largest deviation of the curve from the point's path, relative to the path's size.
+double curve_deviation(const sweep::NurbsCurve<double>& c, const kernel::QMotion<double>& m,
+                       const V3& x) {
+  std::mt19937 g(5);
+  std::uniform_real_distribution<double> u(m.a(), m.b());
+  std::vector<V3> ref;
+  double dev = 0;
+  for (int k = 0; k < 400; ++k) {
+    const double t = k < 2 ? (k == 0 ? m.a() : m.b()) : u(g);
+    const V3 exact = kernel::apply_point(kernel::evaluate(m, t), x);
+    ref.push_back(exact);
+    dev = std::max(dev, (sweep::evaluate(c, t) - exact).norm());
+  }
+  return dev / diag(ref);
+}
+
+double surface_deviation(const sweep::NurbsSurface<double>& s, const kernel::QMotion<double>& m,
+                         const sweep::NurbsCurve<double>& prof) {
+  std::mt19937 g(6);
+  std::uniform_real_distribution<double> u(m.a(), m.b()), v(prof.knots.front(), prof.knots.back());
+  std::vector<V3> ref;
+  double dev = 0;
+  for (int k = 0; k < 400; ++k) {
+    const double uu = u(g), vv = v(g);
+    const V3 exact = kernel::apply_point(kernel::evaluate(m, uu), sweep::evaluate(prof, vv));
+    ref.push_back(exact);
+    dev = std::max(dev, (sweep::evaluate(s, uu, vv) - exact).norm());
+  }
+  return dev / diag(ref);
+}
+
+bool all_positive(const std::vector<double>& w) {
+  return std::all_of(w.begin(), w.end(), [](double x) { return x > 0; });
+}
+
+const RotationMethod kRot[] = {RotationMethod::elliptic, RotationMethod::affine,
+                               RotationMethod::projective};
+const TranslationMethod kTr[] = {TranslationMethod::tr, TranslationMethod::trt,
+                                 TranslationMethod::minimal};
+
+TEST(Trajectory, ExactAtItsMinimalDegreeForEveryMethod) {
+  const auto P = io::to_poses_double(io::read_poses(shared_data("poses/five_positions.json")));
+  const int m = 4;
+  for (auto rot : kRot)
+    for (auto tr : kTr) {
+      SCOPED_TRACE(std::string(kernel::to_string(rot)) + "+" + kernel::to_string(tr));
+      const Built b = build(P, rot, tr);
+      ASSERT_TRUE(sweep::factors_match(b.f, b.r.motion));
+      const int k = b.r.k;
+      for (const V3& x : {V3(0, 0, 0), V3(0, 0, 1), V3(12, -3, 7)}) {
+        const auto c = sweep::to_nurbs(sweep::trajectory(b.r.motion, std::optional(b.f), x));
+        EXPECT_LE(curve_deviation(c, b.r.motion, x), 1e-11);
+        EXPECT_TRUE(all_positive(c.weights));
+        EXPECT_EQ(c.knots.front(), b.r.motion.a());  // u is t
+        EXPECT_EQ(c.knots.back(), b.r.motion.b());
+        int expected = kernel::construction_order(tr, k, b.r.l1, std::max(b.r.l2, 0));
+        if (tr == TranslationMethod::tr && x.isZero())
+          expected = m;  // Proposition 4: the origin's path has degree l
+        EXPECT_EQ(c.degree, expected) << x.transpose();
+      }
+      // Without the factors: the same geometry from the motion alone (degree 2n, elevation
+      // stripped). Forming |Q0|^2 = 4 |Q_rot|^6 (minimal order) loses digits where the
+      // projective rotation comes near zero, which is why exports use the factors.
+      const auto c2 = sweep::to_nurbs(sweep::trajectory(b.r.motion, kNoFactors, V3(0, 0, 1)));
+      EXPECT_LE(curve_deviation(c2, b.r.motion, V3(0, 0, 1)), 1e-10) << "degree " << c2.degree;
+    }
+}
+
+TEST(Trajectory, ExactlyOnTheMotionInRationalArithmetic) {
+  const auto P = io::to_poses_exact(io::read_poses(shared_data("poses/rational_exact.json")));
+  std::vector<Rational> t;
+  for (const auto& p : P) t.push_back(*p.t);
+  for (auto tr : kTr) {
+    kernel::InterpolationOptions o;
+    o.translation = tr;
+    o.rotation = RotationMethod::affine;
+    const auto r = kernel::interpolate_bezier(P, t, o);
+    const auto f = sweep::factors_of(r, tr);
+    ASSERT_TRUE(sweep::factors_match(f, r.motion));
+    sweep::Vec4<Rational> X(Rational(2), Rational(3), Rational(-1), Rational(5) / Rational(7));
+    const auto y = sweep::trajectory_from_factors(f, X);
+    for (int i = 0; i <= 12; ++i) {
+      const Rational s = Rational(i) / Rational(12);
+      const auto a = kernel::evaluate(y, s);
+      const auto e = kernel::apply(kernel::evaluate(r.motion, s), X);
+      for (int c = 0; c < 4; ++c)
+        for (int d = 0; d < 4; ++d)
+          ASSERT_EQ(Rational(a(c) * e(d)), Rational(a(d) * e(c))) << "t = " << s;
+    }
+  }
+}
+
+std::vector<std::pair<std::string, sweep::NurbsCurve<double>>> profiles() {
+  return {
+      {"parabola.json",
+       io::curve_from_json(io::read_json_file(shared_data("profiles/parabola.json")), "parabola")},
+      {"quarter_circle.json",
+       io::curve_from_json(io::read_json_file(shared_data("profiles/quarter_circle.json")),
+                           "quarter")},
+      {"circle:15", sweep::circle(15.0)},
+      {"segment", sweep::segment<double>(V3(-5, 2, 0), V3(5, -1, 8))},
+      {"arc:8,30,250", sweep::arc(8.0, 30.0, 250.0)}};
+}
+
+TEST(KinematicSurface, ExactForEveryMethodAndProfileKind) {
+  const auto P = io::to_poses_double(io::read_poses(shared_data("poses/five_positions.json")));
+  for (auto rot : kRot)
+    for (auto tr : kTr) {
+      const Built b = build(P, rot, tr);
+      for (const auto& [name, prof] : profiles()) {
+        SCOPED_TRACE(std::string(kernel::to_string(rot)) + "+" + kernel::to_string(tr) + " " +
+                     name);
+        const auto s =
+            sweep::to_nurbs(sweep::kinematic_surface(b.r.motion, std::optional(b.f), prof));
+        EXPECT_LE(surface_deviation(s, b.r.motion, prof), 1e-11);
+        for (const auto& row : s.weights) EXPECT_TRUE(all_positive(row));
+        EXPECT_EQ(s.degree_v, prof.degree);
+        EXPECT_EQ(s.degree_u, kernel::construction_order(tr, b.r.k, b.r.l1, std::max(b.r.l2, 0)));
+        EXPECT_EQ(s.knots_u.front(), b.r.motion.a());
+        EXPECT_EQ(s.knots_u.back(), b.r.motion.b());
+      }
+    }
+}
+
+/// A TR motion whose rotational part runs from 1 to -1 + 0.3 i: |Q_rot|^2 = (1-2t)^2 +
+/// (0.3 t)^2 > 0, but its middle Bernstein coefficient is 1 . (-1) = -1.
+kernel::QMotion<double> negative_weight_motion() {
+  using Q = kernel::Quaternion<double>;
+  using DQ = kernel::DualQuaternion<double>;
+  const kernel::Bernstein<Q> rot({Q(1, 0, 0, 0), Q(-1, 0.3, 0, 0)});
+  const kernel::Bernstein<DQ> trans({DQ::translation(V3(0, 0, 0)), DQ::translation(V3(10, 5, 0))});
+  return kernel::QMotion<double>{kernel::Basis::bezier,
+                                 kernel::BSpline<DQ>::from_bezier(kernel::product(trans, rot))};
+}
+
+TEST(PositiveWeights, NegativeBernsteinWeightsAreRefinedAwayWithTheSameGeometry) {
+  const auto m = negative_weight_motion();
+  const auto w = kernel::weight_spline(m);
+  EXPECT_LT(*std::min_element(w.ctrl().begin(), w.ctrl().end()), 0.0);  // the premise
+  const V3 x(1, 2, 3);
+  const auto raw = sweep::trajectory_from_motion(m, sweep::Vec4<double>(1, 1, 2, 3));
+  EXPECT_LT(std::min_element(raw.ctrl().begin(), raw.ctrl().end(),
+                             [](auto& a, auto& b) { return a(0) < b(0); })
+                ->
+                operator()(0),
+            0.0);
+  const auto c = sweep::to_nurbs(sweep::trajectory(m, kNoFactors, x));
+  EXPECT_TRUE(all_positive(c.weights));
+  EXPECT_GT(c.knots.size(), raw.knots().size());  // knots were inserted
+  EXPECT_LE(curve_deviation(c, m, x), 1e-11);     // same geometry, u = t
+  const auto s = sweep::to_nurbs(sweep::kinematic_surface(m, kNoFactors, sweep::circle(4.0)));
+  for (const auto& row : s.weights) EXPECT_TRUE(all_positive(row));
+  EXPECT_LE(surface_deviation(s, m, sweep::circle(4.0)), 1e-11);
+}
+
+TEST(PositiveWeights, AMotionWithAPoleCannotBeMadePositive) {
+  using Q = kernel::Quaternion<double>;
+  using DQ = kernel::DualQuaternion<double>;
+  const kernel::QMotion<double> m{kernel::Basis::bezier,
+                                  kernel::BSpline<DQ>::from_bezier(kernel::product(
+                                      kernel::Bernstein<DQ>({DQ::translation(V3(1, 0, 0))}),
+                                      kernel::Bernstein<Q>({Q(1, 0, 0, 0), Q(-1, 0, 0, 0)})))};
+  EXPECT_TRUE(throws_error([&] { sweep::trajectory(m, kNoFactors, V3(1, 1, 1)); },
+                           Errc::numerical_failure, {"pole"}));
+}
+
+TEST(Profiles, TheRationalCircleIsExact) {
+  const auto c = sweep::circle(Rational(7));
+  const auto h = sweep::to_homogeneous(c);
+  for (int i = 0; i <= 40; ++i) {
+    const auto y = kernel::evaluate(h, Rational(i) / Rational(40));
+    EXPECT_EQ(Rational(y(1) * y(1) + y(2) * y(2)),
+              Rational(Rational(49) * y(0) * y(0)));  // x^2 + y^2 = r^2 exactly
+    EXPECT_EQ(y(3), Rational(0));
+  }
+  const auto cd = sweep::circle(7.0);
+  EXPECT_EQ(sweep::evaluate(cd, 0.0), V3(7, 0, 0));
+  EXPECT_GT(sweep::evaluate(cd, 0.1).y(), 0.0);  // counter-clockwise about +z
+  const auto a = sweep::arc(3.0, -45.0, 200.0);
+  for (int i = 0; i <= 50; ++i) EXPECT_NEAR(sweep::evaluate(a, i / 50.0).norm(), 3.0, 1e-14);
+  EXPECT_NEAR((sweep::evaluate(a, 1.0) -
+               V3(3 * std::cos(200 * M_PI / 180), 3 * std::sin(200 * M_PI / 180), 0))
+                  .norm(),
+              0, 1e-14);
+  EXPECT_THROW(sweep::arc(3.0, 10.0, 10.0), Error);
+  EXPECT_THROW(sweep::circle(-1.0), Error);
+}
+
+TEST(Approximation, LowerDegreeWithinTheMeasuredTolerance) {
+  const auto P = io::to_poses_double(io::read_poses(shared_data("poses/five_positions.json")));
+  const Built b = build(P, RotationMethod::elliptic, TranslationMethod::tr);
+  const auto h = sweep::trajectory_from_factors(b.f, sweep::Vec4<double>(1, 0, 0, 1));
+  ASSERT_EQ(h.degree(), 12);
+  const auto a = sweep::approximate_homogeneous({h}, 5, 1e-4);
+  EXPECT_EQ(a.curves.front().degree(), 5);
+  EXPECT_LE(a.max_deviation, 1e-4);
+  const auto c = sweep::to_nurbs(a.curves.front());
+  EXPECT_TRUE(all_positive(c.weights));
+  // An independent measurement agrees with the stated one.
+  double dev = 0;
+  for (int i = 0; i <= 997; ++i) {
+    const double t = i / 997.0;
+    dev = std::max(dev, (sweep::evaluate(c, t) -
+                         kernel::apply_point(kernel::evaluate(b.r.motion, t), V3(0, 0, 1)))
+                            .norm());
+  }
+  EXPECT_LE(dev, 1e-4);
+}
+
+}  // namespace
+}  // namespace qmotion::test
