@@ -37,6 +37,7 @@
 #include <TopoDS.hxx>
 #include <TopoDS_Edge.hxx>
 #include <TopoDS_Face.hxx>
+#include <UnitsMethods.hxx>
 #include <XSControl_WorkSession.hxx>
 #include <algorithm>
 #include <cctype>
@@ -50,19 +51,21 @@
 namespace qmotion::io {
 namespace {
 
-/// Our unit names -> STEP (write.step.unit) and IGES (unit name) spellings.
+/// Our unit names -> STEP (write.step.unit) and IGES (unit name) spellings, and the size
+/// of the unit in millimetres.
 struct UnitNames {
   const char* step;
   const char* iges;
+  double mm;
 };
 
 UnitNames unit_names(const std::string& u) {
-  if (u == "mm") return {"MM", "MM"};
-  if (u == "cm") return {"CM", "CM"};
-  if (u == "m") return {"M", "M"};
-  if (u == "in") return {"INCH", "IN"};
-  if (u == "ft") return {"FT", "FT"};
-  if (u == "um") return {"UM", "UM"};
+  if (u == "mm") return {"MM", "MM", 1.0};
+  if (u == "cm") return {"CM", "CM", 10.0};
+  if (u == "m") return {"M", "M", 1000.0};
+  if (u == "in") return {"INCH", "IN", 25.4};
+  if (u == "ft") return {"FT", "FT", 304.8};
+  if (u == "um") return {"UM", "UM", 0.001};
   throw Error(Errc::invalid_input,
               "unknown length unit '" + u + "' (expected mm, cm, m, in, ft, um)");
 }
@@ -127,7 +130,17 @@ Handle(Geom_BSplineCurve) make_curve(const sweep::NurbsCurve<double>& c) {
   return new Geom_BSplineCurve(poles, weights, k, m, c.degree);
 }
 
-sweep::NurbsSurface<double> from_occt(const Handle(Geom_BSplineSurface) & g) {
+sweep::NurbsSurface<double> from_occt(Handle(Geom_BSplineSurface) g) {
+  if (g->IsUPeriodic() || g->IsVPeriodic() || g->UMultiplicity(1) <= g->UDegree() ||
+      g->UMultiplicity(g->NbUKnots()) <= g->UDegree() || g->VMultiplicity(1) <= g->VDegree() ||
+      g->VMultiplicity(g->NbVKnots()) <= g->VDegree()) {  // back to the clamped form
+    double u1 = 0, u2 = 0, v1 = 0, v2 = 0;
+    g->Bounds(u1, u2, v1, v2);
+    g = Handle(Geom_BSplineSurface)::DownCast(g->Copy());
+    if (g->IsUPeriodic()) g->SetUNotPeriodic();
+    if (g->IsVPeriodic()) g->SetVNotPeriodic();
+    g->Segment(u1, u2, v1, v2);
+  }
   sweep::NurbsSurface<double> s;
   s.degree_u = g->UDegree();
   s.degree_v = g->VDegree();
@@ -157,7 +170,16 @@ sweep::NurbsSurface<double> from_occt(const Handle(Geom_BSplineSurface) & g) {
   return s;
 }
 
-sweep::NurbsCurve<double> from_occt(const Handle(Geom_BSplineCurve) & g) {
+sweep::NurbsCurve<double> from_occt(Handle(Geom_BSplineCurve) g) {
+  // Readers may make a closed curve periodic or unclamped: back to the clamped form on
+  // the same parameter range (the function is unchanged).
+  if (g->IsPeriodic() || g->Multiplicity(1) <= g->Degree() ||
+      g->Multiplicity(g->NbKnots()) <= g->Degree()) {
+    const double first = g->FirstParameter(), last = g->LastParameter();
+    g = Handle(Geom_BSplineCurve)::DownCast(g->Copy());
+    if (g->IsPeriodic()) g->SetNotPeriodic();
+    g->Segment(first, last);
+  }
   sweep::NurbsCurve<double> c;
   c.degree = g->Degree();
   std::vector<double> d;
@@ -193,7 +215,12 @@ void write_step_shape(const std::string& path, const TopoDS_Shape& shape, const 
   Interface_Static::SetCVal("write.step.unit", u.step);
   Interface_Static::SetCVal("write.step.schema", "AP214IS");
   Interface_Static::SetCVal("write.step.product.name", info.product.c_str());
+  // OpenCASCADE 7.6 keeps the unit of the shape data in a global and in the model, besides
+  // the static: set all, every time, so the numbers are written as given, in that unit.
+  UnitsMethods::SetCasCadeLengthUnit(u.mm);
   STEPControl_Writer writer;
+  writer.Model(Standard_True)->SetLocalLengthUnit(u.mm);
+  writer.Model()->SetWriteLengthUnit(u.mm);
   if (writer.Transfer(shape, STEPControl_AsIs) != IFSelect_RetDone)
     throw Error(Errc::export_failed,
                 path + ": OpenCASCADE could not translate the geometry to STEP");
@@ -221,7 +248,13 @@ void write_iges_geom(const std::string& path, const Handle(Standard_Transient) &
   IGESControl_Controller::Init();
   Interface_Static::SetCVal("xstep.cascade.unit", u.step);
   Interface_Static::SetCVal("write.iges.unit", u.iges);
+  UnitsMethods::SetCasCadeLengthUnit(u.mm);
   IGESControl_Writer writer(u.iges, 0);
+  {  // the model's own record of the unit the shape data is in (7.6): no rescaling
+    IGESData_GlobalSection gs = writer.Model()->GlobalSection();
+    gs.SetCascadeUnit(u.mm);
+    writer.Model()->SetGlobalSection(gs);
+  }
   if (!writer.AddGeom(geom))
     throw Error(Errc::export_failed,
                 path + ": OpenCASCADE could not translate the geometry to IGES");
@@ -316,6 +349,7 @@ CadGeometry read_cad(const std::string& path, bool want_surface, const std::stri
     if (ext == ".step" || ext == ".stp") {
       STEPControl_Controller::Init();
       Interface_Static::SetCVal("xstep.cascade.unit", u.step);
+      UnitsMethods::SetCasCadeLengthUnit(u.mm);
       STEPControl_Reader reader;
       if (reader.ReadFile(path.c_str()) != IFSelect_RetDone)
         throw Error(Errc::invalid_input, path + ": not a readable STEP file");
@@ -327,6 +361,8 @@ CadGeometry read_cad(const std::string& path, bool want_surface, const std::stri
     } else if (ext == ".igs" || ext == ".iges") {
       IGESControl_Controller::Init();
       Interface_Static::SetCVal("xstep.cascade.unit", u.step);
+      UnitsMethods::SetCasCadeLengthUnit(u.mm);
+      Interface_Static::SetIVal("read.iges.bspline.continuity", 0);  // keep C0 B-splines whole
       IGESControl_Reader reader;
       if (reader.ReadFile(path.c_str()) != IFSelect_RetDone)
         throw Error(Errc::invalid_input, path + ": not a readable IGES file");
@@ -361,6 +397,14 @@ CadGeometry read_cad(const std::string& path, bool want_surface, const std::stri
       const Handle(Geom_Curve) curve = BRep_Tool::Curve(TopoDS::Edge(e.Current()), first, last);
       if (curve.IsNull())
         throw Error(Errc::invalid_input, path + ": the first edge has no 3D curve");
+      // Readers split a curve at its C0 knots into edges on the same curve: take the whole
+      // range of the curve the first edge lies on.
+      for (e.Next(); e.More(); e.Next()) {
+        double f2 = 0, l2 = 0;
+        if (BRep_Tool::Curve(TopoDS::Edge(e.Current()), f2, l2) != curve) continue;
+        first = std::min(first, f2);
+        last = std::max(last, l2);
+      }
       Handle(Geom_BSplineCurve) bc = Handle(Geom_BSplineCurve)::DownCast(curve);
       if (bc.IsNull() || first != bc->FirstParameter() || last != bc->LastParameter())
         bc = GeomConvert::CurveToBSplineCurve(new Geom_TrimmedCurve(curve, first, last));

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs qmotion's build and test dependencies from Debian's packages.
 # Usage: scripts/install-deps.sh [--test]
-#   --test  also installs what the test suite needs (GoogleTest, Google Benchmark).
+#   --test  also installs what the test suite needs (GoogleTest, Google Benchmark,
+#           clang-format, and FreeCAD for the interop test).
 set -euo pipefail
 
 packages=(
@@ -12,7 +13,7 @@ packages=(
   libocct-data-exchange-dev libtbb-dev
 )
 if [[ "${1:-}" == "--test" ]]; then
-  packages+=(googletest libgtest-dev libgmock-dev libbenchmark-dev clang-format git)
+  packages+=(googletest libgtest-dev libgmock-dev libbenchmark-dev clang-format git python3 freecad-python3)
 fi
 
 missing=()

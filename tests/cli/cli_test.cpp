@@ -67,7 +67,8 @@ json run_json(const std::vector<std::string>& args) {
 TEST(Cli, HelpVersionAndUsage) {
   const Result h = run({"--help"});
   EXPECT_EQ(h.status, 0);
-  for (const char* cmd : {"info", "eval", "poses", "demo", "Exit status"})
+  for (const char* cmd : {"info", "eval", "poses", "interpolate", "trajectory", "sweep", "check",
+                          "demo", "Exit status"})
     EXPECT_NE(h.out.find(cmd), std::string::npos) << cmd;
   const Result sub = run({"eval", "--help"});
   EXPECT_EQ(sub.status, 0);
@@ -317,9 +318,184 @@ TEST(Cli, InterpolateRefusalsExitWithTheirStatusAndLeaveNoFile) {
       0);
 }
 
-TEST(Cli, DemoExists) {
-  const Result r = run({"demo", "-o", (scratch_dir() / "demo").string()});
+/// Interpolates five_positions with the given methods into the scratch folder.
+fs::path five_motion(const std::string& rot, const std::string& tr) {
+  const fs::path m = scratch_dir() / ("five_" + rot + "_" + tr + ".json");
+  const Result r = run({"interpolate", shared_data("poses/five_positions.json"), "-o", m.string(),
+                        "--rotation", rot, "--translation", tr});
   EXPECT_EQ(r.status, 0) << r.err;
+  return m;
+}
+
+json check(const fs::path& file, const fs::path& motion, const std::vector<std::string>& what) {
+  std::vector<std::string> args = {"check", file.string(), "--motion", motion.string()};
+  args.insert(args.end(), what.begin(), what.end());
+  return run_json(args);
+}
+
+TEST(Cli, TrajectoriesAndSurfacesAreExactInEveryFormat) {
+  // A STEP profile made by qmotion itself: the trajectory of a point under another motion.
+  const fs::path prof_step = scratch_dir() / "profile.step";
+  ASSERT_EQ(run({"trajectory", kExamples + "/motions/bezier_tr.json", "--point", "3,1,0", "-o",
+                 prof_step.string()})
+                .status,
+            0);
+  const fs::path prof_igs = scratch_dir() / "profile.igs";
+  ASSERT_EQ(run({"trajectory", kExamples + "/motions/bezier_tr.json", "--point", "3,1,0", "-o",
+                 prof_igs.string()})
+                .status,
+            0);
+  const std::vector<std::string> profiles = {shared_data("profiles/parabola.json"),
+                                             "circle:12",
+                                             "arc:9,-30,120",
+                                             "segment:-5,0,0:5,2,3",
+                                             prof_step.string(),
+                                             prof_igs.string()};
+  for (const std::string rot : {"elliptic", "affine", "projective"})
+    for (const std::string tr : {"tr", "trt", "minimal"}) {
+      const fs::path m = five_motion(rot, tr);
+      for (const std::string ext : {".json", ".step", ".igs"}) {
+        SCOPED_TRACE(rot + "+" + tr + " " + ext);
+        const fs::path c = scratch_dir() / ("traj" + ext);
+        Result r = run({"trajectory", m.string(), "--point", "0,0,1", "-o", c.string()});
+        ASSERT_EQ(r.status, 0) << r.err;
+        json k = check(c, m, {"--point", "0,0,1"});
+        EXPECT_LE(k["relative_deviation"].get<double>(), 1e-11);
+        EXPECT_TRUE(k["weights_positive"].get<bool>());
+        EXPECT_TRUE(k["param_range_matches_motion"].get<bool>());
+        for (const auto& p : profiles) {
+          if (rot != "elliptic" && p != profiles.front())
+            continue;  // every profile kind once per format
+          const fs::path s = scratch_dir() / ("surf" + ext);
+          r = run({"sweep", m.string(), "--profile", p, "-o", s.string()});
+          ASSERT_EQ(r.status, 0) << p << ": " << r.err;
+          k = check(s, m, {"--profile", p});
+          EXPECT_LE(k["relative_deviation"].get<double>(), 1e-11) << p;
+          EXPECT_TRUE(k["weights_positive"].get<bool>()) << p;
+          EXPECT_TRUE(k["param_range_matches_motion"].get<bool>()) << p;
+          EXPECT_GE(k["samples"].get<int>(), 400);
+          if (ext != ".json") {
+            EXPECT_TRUE(k["valid"].get<bool>()) << p;
+            const std::string u = k["file_units"].get<std::string>();
+            EXPECT_TRUE(u == "mm" || u == "millimetre") << u;
+          }
+        }
+      }
+    }
+}
+
+TEST(Cli, TrajectoryDegreesAreMinimal) {
+  // Elliptic + TR through five poses: k = l = 4. Origin: l = 4; general point: 2k + l = 12.
+  const fs::path m = five_motion("elliptic", "tr");
+  const fs::path o = scratch_dir() / "origin.json", z = scratch_dir() / "z.json";
+  ASSERT_EQ(run({"trajectory", m.string(), "--point", "0,0,0", "-o", o.string()}).status, 0);
+  ASSERT_EQ(run({"trajectory", m.string(), "--point", "0,0,1", "-o", z.string()}).status, 0);
+  EXPECT_EQ(json::parse(slurp(o))["degree"], 4);
+  EXPECT_EQ(json::parse(slurp(z))["degree"], 12);
+  // Minimal order: 2m = 8 for a general point, though the Q-motion has degree 3m = 12.
+  const fs::path mm = five_motion("elliptic", "minimal");
+  ASSERT_EQ(run({"trajectory", mm.string(), "--point", "0,0,1", "-o", z.string()}).status, 0);
+  EXPECT_EQ(json::parse(slurp(z))["degree"], 8);
+}
+
+TEST(Cli, DegreesAboveTheCadLimitAreRefusedOrApproximatedOnRequest) {
+  // Ten poses in one Bezier motion: a general point's trajectory has degree 2k + l = 27.
+  const fs::path m = scratch_dir() / "helix10.json";
+  ASSERT_EQ(
+      run({"interpolate", kData + "/helix_10.json", "--form", "bezier", "-o", m.string()}).status,
+      0);
+  const fs::path step = scratch_dir() / "high.step";
+  fs::remove(step);
+  Result r = run({"trajectory", m.string(), "--point", "0,0,1", "-o", step.string()});
+  EXPECT_EQ(r.status, 3);
+  EXPECT_NE(r.err.find("degree 27"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--max-degree"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(step));
+  // JSON has no such limit.
+  const fs::path js = scratch_dir() / "high.json";
+  ASSERT_EQ(run({"trajectory", m.string(), "--point", "0,0,1", "-o", js.string()}).status, 0);
+  EXPECT_EQ(json::parse(slurp(js))["degree"], 27);
+  // Rhino's 11 on request: an approximation within the stated tolerance, measured.
+  r = run({"trajectory", m.string(), "--point", "0,0,1", "-o", step.string(), "--max-degree", "11",
+           "--tol", "1e-6"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("approximation"), std::string::npos);
+  json k = check(step, m, {"--point", "0,0,1"});
+  EXPECT_EQ(k["degree_u"], 11);
+  EXPECT_LE(k["max_deviation"].get<double>(), 1e-6);
+  const fs::path sj = scratch_dir() / "high_surface.json";
+  r = run({"sweep", m.string(), "--profile", "circle:5", "-o", sj.string(), "--max-degree", "11",
+           "--tol", "1e-5"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json sd = json::parse(slurp(sj));
+  EXPECT_EQ(sd["degree_u"], 11);
+  EXPECT_LE(sd["approximation"]["max_deviation"].get<double>(), 1e-5);
+  k = check(sj, m, {"--profile", "circle:5"});
+  EXPECT_LE(k["max_deviation"].get<double>(), 2e-5);
+}
+
+TEST(Cli, BadProfilesAndPolesLeaveNoFile) {
+  const fs::path m = five_motion("elliptic", "tr");
+  const std::string d = kData + "/profiles/";
+  struct Case {
+    std::vector<std::string> args;
+    int status;
+    std::string needle;
+  };
+  const json pole{{"type", "q-motion"},
+                  {"basis", "bezier"},
+                  {"degree", 1},
+                  {"param_range", {0, 1}},
+                  {"control_points", {{2, 0, 0, 0, 0, 0, 0, 0}, {-2, 0, 0, 0, 0, 0, 0, 0}}}};
+  const fs::path pm = scratch_dir() / "pole_motion.json";
+  std::ofstream(pm) << pole.dump();
+  const std::vector<Case> cases = {
+      {{"sweep", m.string(), "--profile", d + "negative_weight.json"}, 2, "positive"},
+      {{"sweep", m.string(), "--profile", d + "no_curve.step"}, 2, "no_curve.step"},
+      {{"sweep", m.string(), "--profile", d + "garbage.step"}, 2, "garbage.step"},
+      {{"sweep", m.string(), "--profile", d + "absent.igs"}, 2, "absent.igs"},
+      {{"sweep", m.string(), "--profile", "circle:0"}, 2, "radius"},
+      {{"sweep", m.string(), "--profile", "square:3"}, 2, "--profile"},
+      {{"sweep", pm.string(), "--profile", "circle:3"}, 3, "pole"},
+      {{"trajectory", pm.string(), "--point", "1,2,3"}, 3, "pole"},
+      {{"trajectory", m.string(), "--point", "1,2"}, 2, "--point"},
+  };
+  for (const std::string ext : {".json", ".step", ".igs"})
+    for (const auto& c : cases) {
+      const fs::path out = scratch_dir() / ("bad_out" + ext);
+      fs::remove(out);
+      std::vector<std::string> args = c.args;
+      args.insert(args.end(), {"-o", out.string()});
+      const Result r = run(args);
+      EXPECT_EQ(r.status, c.status) << c.args[3] << ": " << r.err;
+      EXPECT_NE(r.err.find(c.needle), std::string::npos) << r.err;
+      EXPECT_FALSE(fs::exists(out)) << c.args[3];
+    }
+  const Result wrong_ext =
+      run({"sweep", m.string(), "--profile", "circle:3", "-o", (scratch_dir() / "x.dxf").string()});
+  EXPECT_EQ(wrong_ext.status, 2);
+  const Result both = run({"check", (scratch_dir() / "x.json").string(), "--motion", m.string()});
+  EXPECT_EQ(both.status, 2);
+}
+
+TEST(Cli, DemoWritesEveryFormatAndAnExactnessReport) {
+  const fs::path dir = scratch_dir() / "demo";
+  fs::remove_all(dir);
+  const Result r = run({"demo", "-o", dir.string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json report = json::parse(r.out);
+  ASSERT_EQ(report["exactness"].size(), 9u);  // 2 trajectories + 1 surface, x JSON, STEP, IGES
+  for (const auto& c : report["exactness"]) {
+    EXPECT_LE(c["relative_deviation"].get<double>(), 1e-11) << c["file"];
+    EXPECT_TRUE(c["weights_positive"].get<bool>());
+    EXPECT_TRUE(fs::exists(dir / c["file"].get<std::string>()));
+  }
+  for (const char* f :
+       {"motion.json", "demo.svg", "report.json", "surface_parabola.step", "surface_parabola.igs"})
+    EXPECT_TRUE(fs::exists(dir / f)) << f;
+  EXPECT_NE(slurp(dir / "demo.svg").find("<polyline"), std::string::npos);
+  for (const auto& e : fs::directory_iterator(dir))
+    EXPECT_NE(e.path().filename().string().rfind(".qmotion", 0), 0u);
 }
 
 }  // namespace

@@ -1,0 +1,132 @@
+// tests/bench/sweep_bench.cpp: motion file -> exact surface -> STEP, side by side with
+// OpenCASCADE fitting the same surface from exact points (GeomAPI_PointsToBSplineSurface,
+// an approximation: the peer the SPEC names).
+#include <benchmark/benchmark.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "io/json_number.hpp"
+#include "io/motion_json.hpp"
+#include "io/occt.hpp"
+#include "io/poses.hpp"
+#include "kernel/parametrization.hpp"
+#include "sweep/surface.hpp"
+
+// OpenCASCADE after CGAL: its `Handle` macro breaks CGAL headers included after it.
+// clang-format off
+#include <GeomAPI_PointsToBSplineSurface.hxx>
+#include <GeomAPI_ProjectPointOnSurf.hxx>
+#include <Geom_BSplineSurface.hxx>
+#include <TColgp_Array2OfPnt.hxx>
+// clang-format on
+
+namespace {
+using namespace qmotion;
+namespace fs = std::filesystem;
+
+const sweep::NurbsCurve<double> kParabola{
+    2, {0, 0, 0, 1, 1, 1}, {{-10, 0, 10}, {0, 0, -10}, {10, 0, 10}}, {1, 1, 1}};
+
+/// Writes a motion file like `qmotion interpolate` does (with its factors) and returns its path.
+std::string motion_file(const std::string& poses, int count, kernel::TranslationMethod tr,
+                        const std::string& name) {
+  io::PoseSet set = io::read_poses(poses);
+  set.poses.resize(static_cast<std::size_t>(count));
+  const auto P = io::to_poses_double(set);
+  kernel::InterpolationOptions o;
+  o.translation = tr;
+  const auto r = kernel::interpolate_bezier(P, kernel::parametrize(P, kernel::ParamRule::given), o);
+  nlohmann::json method{{"translation", kernel::to_string(tr)}};
+  nlohmann::json rot = nlohmann::json::array(), trans = nlohmann::json::array();
+  for (const auto& c : r.rotation.coeffs()) rot.push_back({c.w(), c.x(), c.y(), c.z()});
+  for (Eigen::Index j = 0; j < r.translation.rows(); ++j)
+    trans.push_back({r.translation(j, 0), r.translation(j, 1), r.translation(j, 2)});
+  method["rotation_control_points"] = rot;
+  method["translation_control_points"] = trans;
+  const std::string path = (fs::temp_directory_path() / name).string();
+  std::ofstream(path) << io::motion_to_json(r.motion, method).dump();
+  return path;
+}
+
+std::string shared(const std::string& rel) {
+  const char* d = std::getenv("QMOTION_SHARED_DATA");
+  return std::string(d ? d : "../shared/data") + "/" + rel;
+}
+
+sweep::NurbsSurface<double> surface_from_file(const std::string& path) {
+  const auto f = io::read_motion(path);
+  const auto m = io::to_motion_double(f);
+  return sweep::to_nurbs(sweep::kinematic_surface(m, io::factors_double(f, m), kParabola));
+}
+
+void BM_DemoMotionFileToStep(benchmark::State& st) {  // five poses, elliptic + TR: 12 x 2
+  const std::string path = motion_file(shared("poses/five_positions.json"), 5,
+                                       kernel::TranslationMethod::tr, "bench_demo.json");
+  const std::string out = (fs::temp_directory_path() / "bench_demo.step").string();
+  for (auto _ : st) io::write_step(out, surface_from_file(path), {});
+}
+BENCHMARK(BM_DemoMotionFileToStep)->Unit(benchmark::kMillisecond);
+
+void BM_Degree16x2MotionFileToStep(benchmark::State& st) {  // nine poses, minimal order: 2m = 16
+  const std::string path = motion_file(shared("poses/helix_40.json"), 9,
+                                       kernel::TranslationMethod::minimal, "bench_16.json");
+  const std::string out = (fs::temp_directory_path() / "bench_16.step").string();
+  st.SetLabel("degree " + std::to_string(surface_from_file(path).degree_u) + " x 2");
+  for (auto _ : st) io::write_step(out, surface_from_file(path), {});
+}
+BENCHMARK(BM_Degree16x2MotionFileToStep)->Unit(benchmark::kMillisecond);
+
+void BM_Degree16x2SurfaceBuildOnly(benchmark::State& st) {
+  const std::string path = motion_file(shared("poses/helix_40.json"), 9,
+                                       kernel::TranslationMethod::minimal, "bench_16b.json");
+  const auto f = io::read_motion(path);
+  const auto m = io::to_motion_double(f);
+  const auto factors = io::factors_double(f, m);
+  for (auto _ : st)
+    benchmark::DoNotOptimize(sweep::to_nurbs(sweep::kinematic_surface(m, factors, kParabola)));
+}
+BENCHMARK(BM_Degree16x2SurfaceBuildOnly)->Unit(benchmark::kMicrosecond);
+
+/// Peer: OpenCASCADE fits a B-spline surface to a grid of exact points of the same
+/// surface (what a sweep without exact rational motions has to do). Reports its deviation.
+void BM_Peer_OcctFitDegree16x2Surface(benchmark::State& st) {
+  const std::string path = motion_file(shared("poses/helix_40.json"), 9,
+                                       kernel::TranslationMethod::minimal, "bench_16c.json");
+  const auto f = io::read_motion(path);
+  const auto m = io::to_motion_double(f);
+  const int nu = 60, nv = 15;
+  TColgp_Array2OfPnt grid(1, nu, 1, nv);
+  for (int i = 1; i <= nu; ++i)
+    for (int j = 1; j <= nv; ++j) {
+      const auto p =
+          kernel::apply_point(kernel::evaluate(m, m.a() + (m.b() - m.a()) * (i - 1) / (nu - 1)),
+                              sweep::evaluate(kParabola, (j - 1) / double(nv - 1)));
+      grid.SetValue(i, j, gp_Pnt(p.x(), p.y(), p.z()));
+    }
+  double dev = 0;
+  for (auto _ : st) {
+    GeomAPI_PointsToBSplineSurface fit(grid, 3, 8, GeomAbs_C2, 1e-6);
+    benchmark::DoNotOptimize(fit.Surface());
+    st.PauseTiming();
+    const auto s = fit.Surface();
+    dev = 0;
+    // Distance of exact points midway between the fitted ones to the fitted surface (its
+    // parametrisation differs from t, so distance, not parameter-wise difference).
+    for (int i = 0; i <= 40; ++i)
+      for (int j = 0; j <= 10; ++j) {
+        const double a = (i + 0.5) / 41.0, b = (j + 0.5) / 11.0;
+        const auto p = kernel::apply_point(kernel::evaluate(m, m.a() + (m.b() - m.a()) * a),
+                                           sweep::evaluate(kParabola, b));
+        GeomAPI_ProjectPointOnSurf proj(gp_Pnt(p.x(), p.y(), p.z()), s);
+        if (proj.NbPoints() > 0) dev = std::max(dev, proj.LowerDistance());
+      }
+    st.ResumeTiming();
+  }
+  st.counters["max_deviation_mm"] = dev;
+}
+BENCHMARK(BM_Peer_OcctFitDegree16x2Surface)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,179 @@
+// tests/io/occt_test.cpp mirrors io/occt.hpp: STEP/IGES written and read back through
+// OpenCASCADE, bit for bit.
+#include "io/occt.hpp"
+
+#include <filesystem>
+#include <random>
+
+#include "io/json_number.hpp"
+#include "io/profiles.hpp"
+#include "io_test_util.hpp"
+#include "sweep/profiles.hpp"
+#include "sweep/surface.hpp"
+
+namespace qmotion::test {
+namespace {
+namespace fs = std::filesystem;
+
+fs::path scratch(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("qmotion_occt_" + std::to_string(::getpid()));
+  fs::create_directories(d);
+  return d / name;
+}
+
+/// A rational surface with awkward numbers (non-dyadic, mixed magnitudes) and an interior
+/// knot of multiplicity 2.
+sweep::NurbsSurface<double> awkward_surface() {
+  std::mt19937 g(3);
+  std::uniform_real_distribution<double> u(-1, 1);
+  sweep::NurbsSurface<double> s;
+  s.degree_u = 3;
+  s.degree_v = 2;
+  s.knots_u = {0.1, 0.1, 0.1, 0.1, 1.0 / 3.0, 1.0 / 3.0, 0.7, 0.7, 0.7, 0.7};
+  s.knots_v = {0, 0, 0, 1, 1, 1};
+  for (int i = 0; i < 6; ++i) {
+    s.points.emplace_back();
+    s.weights.emplace_back();
+    for (int j = 0; j < 3; ++j) {
+      s.points.back().emplace_back(u(g) * 123.456789, u(g) / 7.0, u(g) * 1e-3 + 1.0 / 3.0);
+      s.weights.back().push_back(0.5 + std::abs(u(g)));
+    }
+  }
+  return s;
+}
+
+TEST(OcctKnots, DistinctAndFullConvertBothWays) {
+  const std::vector<double> full = {0, 0, 0, 0.25, 0.5, 0.5, 1, 1, 1};
+  std::vector<double> d;
+  std::vector<int> m;
+  io::knots_to_distinct(full, d, m);
+  EXPECT_EQ(d, (std::vector<double>{0, 0.25, 0.5, 1}));
+  EXPECT_EQ(m, (std::vector<int>{3, 1, 2, 3}));
+  EXPECT_EQ(io::knots_from_distinct(d, m), full);
+}
+
+TEST(OcctRoundTrip, SurfacesAndCurvesComeBackBitForBit) {
+  const auto s = awkward_surface();
+  const auto c = sweep::arc(7.0 / 3.0, 10.0, 300.0);
+  for (const std::string ext : {".step", ".igs"}) {
+    SCOPED_TRACE(ext);
+    const auto sp = scratch("surface" + ext), cp = scratch("curve" + ext);
+    if (ext == ".step") {
+      io::write_step(sp.string(), s, {});
+      io::write_step(cp.string(), c, {});
+    } else {
+      io::write_iges(sp.string(), s, {});
+      io::write_iges(cp.string(), c, {});
+    }
+    const auto gs = io::read_cad(sp.string(), true);
+    EXPECT_TRUE(gs.valid);
+    EXPECT_EQ(gs.faces, 1);
+    EXPECT_EQ(gs.surface.knots_u, s.knots_u);
+    EXPECT_EQ(gs.surface.knots_v, s.knots_v);
+    EXPECT_EQ(gs.surface.points, s.points);  // 17 significant digits: every double survives
+    EXPECT_EQ(gs.surface.weights, s.weights);
+    EXPECT_LE((gs.value(0.5, 0.25) - sweep::evaluate(s, 0.5, 0.25)).norm(), 1e-12);
+    const auto gc = io::read_cad(cp.string(), false);
+    EXPECT_EQ(gc.curve.points, c.points);
+    EXPECT_EQ(gc.curve.weights, c.weights);
+    EXPECT_EQ(gc.curve.knots, c.knots);
+  }
+}
+
+TEST(OcctUnits, TheDeclaredUnitIsTheOneTheNumbersAreIn) {
+  const auto c = sweep::segment<double>(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(25.4, 0, 0));
+  for (const std::string ext : {".step", ".igs"}) {
+    io::ExportInfo in;
+    in.units = "in";
+    const auto pin = scratch("inch" + ext), pmm = scratch("mm_after_inch" + ext);
+    ext == ".step" ? io::write_step(pin.string(), c, in) : io::write_iges(pin.string(), c, in);
+    // A writer can carry the unit of an earlier transfer: write mm right after inches.
+    ext == ".step" ? io::write_step(pmm.string(), c, {}) : io::write_iges(pmm.string(), c, {});
+    const auto gi = io::read_cad(pin.string(), false, "in");
+    const auto gm = io::read_cad(pmm.string(), false, "mm");
+    EXPECT_TRUE(gi.file_units == "inch" || gi.file_units == "in") << gi.file_units;
+    EXPECT_TRUE(gm.file_units == "millimetre" || gm.file_units == "mm") << gm.file_units;
+    // Read in their own unit, both files hold the numbers as given.
+    EXPECT_EQ(gi.curve.points.back().x(), 25.4);
+    EXPECT_EQ(gm.curve.points.back().x(), 25.4);
+    // Read the inch file into mm: 25.4 inch is 645.16 mm.
+    EXPECT_NEAR(io::read_cad(pin.string(), false, "mm").curve.points.back().x(), 645.16, 1e-9);
+  }
+}
+
+TEST(OcctMetadata, HeadersNameTheProductAndTheMotion) {
+  const auto s = awkward_surface();
+  io::ExportInfo info;
+  info.product = "qmotion test product";
+  info.description = "kinematic surface of motion demo_motion.json";
+  io::write_step(scratch("meta.step").string(), s, info);
+  io::write_iges(scratch("meta.igs").string(), s, info);
+  const std::string step = io::read_text_file(scratch("meta.step").string());
+  const std::string iges = io::read_text_file(scratch("meta.igs").string());
+  EXPECT_NE(step.find("demo_motion.json"), std::string::npos);
+  EXPECT_NE(step.find("qmotion test product"), std::string::npos);
+  EXPECT_NE(step.find("E+02"), std::string::npos);  // exponent format of %.17E
+  EXPECT_NE(iges.find("demo_motion.json"), std::string::npos);
+  EXPECT_NE(iges.find("     128"), std::string::npos);  // IGES entity 128
+}
+
+TEST(OcctErrors, BadFilesAndGeometryAreRefused) {
+  const std::string d = std::string(QMOTION_TEST_DATA) + "/profiles/";
+  EXPECT_TRUE(throws_error([&] { io::read_cad(d + "no_curve.step", false); }, Errc::invalid_input,
+                           {"no_curve.step"}));
+  EXPECT_TRUE(throws_error([&] { io::read_cad(d + "garbage.step", false); }, Errc::invalid_input,
+                           {"garbage.step"}));
+  EXPECT_TRUE(throws_error([&] { io::read_cad(d + "missing.igs", false); }, Errc::invalid_input,
+                           {"missing.igs", "cannot open"}));
+  EXPECT_TRUE(throws_error([&] { io::read_cad(d + "negative_weight.json", false); },
+                           Errc::invalid_input, {"expected a .step"}));
+  // Degree 26 is above what OpenCASCADE stores.
+  sweep::NurbsCurve<double> high;
+  high.degree = 26;
+  high.knots.assign(27, 0.0);
+  high.knots.insert(high.knots.end(), 27, 1.0);
+  for (int i = 0; i < 27; ++i) {
+    high.points.emplace_back(i, 0, 0);
+    high.weights.push_back(1.0);
+  }
+  EXPECT_EQ(io::occt_max_degree(), 25);
+  const auto out = scratch("high.step");
+  EXPECT_TRUE(throws_error([&] { io::write_step(out.string(), high, {}); }, Errc::export_failed,
+                           {"OpenCASCADE"}));
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(Profiles, EveryKindReads) {
+  const std::string d = std::string(QMOTION_TEST_DATA) + "/profiles/";
+  EXPECT_EQ(io::read_profile(shared_data("profiles/parabola.json")).degree,
+            2);  // needs QMOTION_SHARED_DATA
+  EXPECT_EQ(io::read_profile("circle:5").points.size(), 9u);
+  EXPECT_EQ(io::read_profile("arc:5,0,90").points.size(), 3u);
+  EXPECT_EQ(io::read_profile("segment:0,0,0:1,2,3").points.back(), Eigen::Vector3d(1, 2, 3));
+  // A STEP profile: its first edge, converted exactly.
+  const auto c = sweep::circle(3.0);
+  io::write_step(scratch("circle.step").string(), c, {});
+  const auto back = io::read_profile(scratch("circle.step").string());
+  for (int i = 0; i <= 20; ++i)
+    EXPECT_NEAR(sweep::evaluate(
+                    back, back.knots.front() + (back.knots.back() - back.knots.front()) * i / 20.0)
+                    .norm(),
+                3.0, 1e-14);
+  EXPECT_TRUE(throws_error([&] { io::read_profile(d + "negative_weight.json"); },
+                           Errc::invalid_input, {"weights[1]", "positive"}));
+  EXPECT_TRUE(throws_error([&] { io::read_profile(d + "no_curve.step"); }, Errc::invalid_input,
+                           {"no_curve.step"}));
+  EXPECT_TRUE(
+      throws_error([&] { io::read_profile("circle:-2"); }, Errc::invalid_input, {"radius"}));
+  EXPECT_TRUE(throws_error([&] { io::read_profile("segment:0,0,0:0,0,0"); }, Errc::invalid_input,
+                           {"coincide"}));
+  EXPECT_TRUE(throws_error([&] { io::read_profile("arc:1,2"); }, Errc::invalid_input,
+                           {"3 comma-separated"}));
+  EXPECT_TRUE(throws_error([&] { io::read_profile(d + "nope.json"); }, Errc::invalid_input,
+                           {"nope.json", "cannot open"}));
+  EXPECT_TRUE(throws_error([&] { io::read_profile("profile.dxf"); }, Errc::invalid_input,
+                           {"expected a .json"}));
+}
+
+}  // namespace
+}  // namespace qmotion::test
