@@ -109,8 +109,9 @@ class BSpline {
   }
 
   /// Multiplicity of the value x in the knot vector (0 when absent).
-  int multiplicity(const Scalar& x) const {
-    return static_cast<int>(std::count(t_.begin(), t_.end(), x));
+  int multiplicity(const Scalar& x) const {  // knots are sorted: O(log n)
+    const auto range = std::equal_range(t_.begin(), t_.end(), x);
+    return static_cast<int>(range.second - range.first);
   }
 
  private:
@@ -284,6 +285,57 @@ BSpline<Coef> derivative(const BSpline<Coef>& s) {
     Q.push_back(den == S(0) ? coef_zero<Coef>() : scale(S(S(p) / den), Coef(P[i + 1] - P[i])));
   }
   return BSpline<Coef>::make(p - 1, std::vector<S>(T.begin() + 1, T.end() - 1), std::move(Q));
+}
+
+/// Values of the p+1 non-zero basis functions N_{j-p..j, p} at t on span j
+/// (The NURBS Book, A2.2). Exact for exact Scalar.
+template <typename Scalar>
+std::vector<Scalar> basis_functions(const std::vector<Scalar>& T, int j, int p, const Scalar& t) {
+  std::vector<Scalar> N(static_cast<std::size_t>(p + 1), Scalar(0)), left(N.size(), Scalar(0)),
+      right(N.size(), Scalar(0));
+  N[0] = Scalar(1);
+  for (int k = 1; k <= p; ++k) {
+    const std::size_t uk = static_cast<std::size_t>(k);
+    left[uk] = Scalar(t - T[static_cast<std::size_t>(j + 1 - k)]);
+    right[uk] = Scalar(T[static_cast<std::size_t>(j + k)] - t);
+    Scalar saved(0);
+    for (std::size_t r = 0; r < uk; ++r) {
+      const Scalar tmp = Scalar(N[r] / (right[r + 1] + left[uk - r]));
+      N[r] = Scalar(saved + right[r + 1] * tmp);
+      saved = Scalar(left[uk - r] * tmp);
+    }
+    N[uk] = saved;
+  }
+  return N;
+}
+
+/// Combines two splines on the same interval piece by piece over the union of their
+/// breakpoints: f(piece_a, piece_b) must return a Bernstein polynomial of degree
+/// max(deg a, deg b) on the piece. At each breakpoint the result keeps the continuity of
+/// the less smooth input.
+template <typename A, typename B, typename F>
+auto combine(const BSpline<A>& a, const BSpline<B>& b, F f) {
+  using S = coef_scalar_t<A>;
+  std::vector<S> x = a.breakpoints();
+  for (const auto& v : b.breakpoints()) x.push_back(v);
+  std::sort(x.begin(), x.end());
+  x.erase(std::unique(x.begin(), x.end()), x.end());
+  const int d = std::max(a.degree(), b.degree());
+  using R =
+      typename std::decay_t<decltype(f(bezier_piece(a, x[0], x[1]), bezier_piece(b, x[0], x[1])))>;
+  std::vector<R> pieces;
+  for (std::size_t k = 0; k + 1 < x.size(); ++k) {
+    const auto pa = bezier_piece(a, x[k], x[k + 1]);
+    const auto pb = bezier_piece(b, x[k], x[k + 1]);
+    pieces.push_back(f(elevate(pa, d - pa.degree()), elevate(pb, d - pb.degree())));
+  }
+  std::vector<S> knots(static_cast<std::size_t>(d + 1), x.front());
+  for (std::size_t k = 1; k + 1 < x.size(); ++k) {
+    const int cont = std::min(a.degree() - a.multiplicity(x[k]), b.degree() - b.multiplicity(x[k]));
+    knots.insert(knots.end(), static_cast<std::size_t>(std::max(0, d - cont)), x[k]);
+  }
+  knots.insert(knots.end(), static_cast<std::size_t>(d + 1), x.back());
+  return from_bezier_pieces(pieces, d, std::move(knots));
 }
 
 /// Applies f to every pole.

@@ -10,24 +10,7 @@
 
 namespace qmotion::sweep {
 
-/// Values of the p+1 non-zero B-spline basis functions at t on span j (The NURBS Book A2.2).
-inline std::vector<double> basis_functions(const std::vector<double>& T, int j, int p, double t) {
-  std::vector<double> N(static_cast<std::size_t>(p + 1), 0.0), left(N.size()), right(N.size());
-  N[0] = 1.0;
-  for (int k = 1; k <= p; ++k) {
-    left[static_cast<std::size_t>(k)] = t - T[static_cast<std::size_t>(j + 1 - k)];
-    right[static_cast<std::size_t>(k)] = T[static_cast<std::size_t>(j + k)] - t;
-    double saved = 0.0;
-    for (int r = 0; r < k; ++r) {
-      const double tmp = N[static_cast<std::size_t>(r)] / (right[static_cast<std::size_t>(r + 1)] +
-                                                           left[static_cast<std::size_t>(k - r)]);
-      N[static_cast<std::size_t>(r)] = saved + right[static_cast<std::size_t>(r + 1)] * tmp;
-      saved = left[static_cast<std::size_t>(k - r)] * tmp;
-    }
-    N[static_cast<std::size_t>(k)] = saved;
-  }
-  return N;
-}
+using kernel::basis_functions;
 
 /// Result of approximate_homogeneous.
 struct Approximation {

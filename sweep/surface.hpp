@@ -26,8 +26,9 @@ std::vector<kernel::BSpline<Vec4<Scalar>>> trajectories(
     const kernel::QMotion<Scalar>& m, const std::optional<MotionFactors<Scalar>>& f,
     const std::vector<Vec4<Scalar>>& X) {
   std::vector<kernel::BSpline<Vec4<Scalar>>> cols;
-  if (f) {
-    for (const auto& x : X) cols.push_back(trajectory_from_factors(*f, x, /*uniform_degree=*/true));
+  if (f) {  // one matrix spline, then a linear map per point
+    const auto M = matrix_from_factors(*f);
+    for (const auto& x : X) cols.push_back(apply(M, x));
     return cols;
   }
   for (const auto& x : X) cols.push_back(kernel::homogeneous_trajectory(m, x));

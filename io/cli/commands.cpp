@@ -24,6 +24,7 @@
 #include "kernel/motion.hpp"
 #include "kernel/order.hpp"
 #include "kernel/parametrization.hpp"
+#include "kernel/spline_interpolation.hpp"
 
 namespace qmotion::cli {
 namespace {
@@ -263,6 +264,50 @@ json run_interpolation(const std::vector<kernel::Pose<Scalar>>& poses, const std
   return io::motion_to_json(r.motion, method, units);
 }
 
+/// Rows of numbers for a spline's poles, and its knots, into the method record.
+template <typename Scalar, typename Coef, typename Row>
+void record_spline(json& method, const std::string& name, const kernel::BSpline<Coef>& s, Row row) {
+  json poles = json::array();
+  for (const auto& c : s.ctrl()) poles.push_back(numbers_json(row(c)));
+  method[name + "_control_points"] = poles;
+  method[name + "_knots"] = numbers_json(s.knots());
+}
+
+template <typename Scalar>
+json run_spline_interpolation(const std::vector<kernel::Pose<Scalar>>& poses,
+                              const std::vector<Scalar>& t, const std::string& form,
+                              const kernel::SplineOptions& sopt, json method,
+                              const std::string& units, std::string& summary) {
+  kernel::SplineInterpolation<Scalar> r = [&] {
+    if constexpr (kernel::is_exact_v<Scalar>) {
+      return kernel::interpolate_bspline(poses, t, sopt);
+    } else {
+      return form == "c1" ? kernel::interpolate_c1(poses, t, sopt.translation, sopt.max_residual)
+                          : kernel::interpolate_bspline(poses, t, sopt);
+    }
+  }();
+  method["parameters"] = numbers_json(t);
+  method["rotation_degree"] = r.k;
+  method["translation_degree"] = r.l;
+  double worst = 0;
+  for (double x : r.residuals) worst = std::max(worst, x);
+  method["max_interpolation_residual"] = worst;
+  using V3 = Eigen::Matrix<Scalar, 3, 1>;
+  record_spline<Scalar>(method, "rotation", r.factors.rotation,
+                        [](const kernel::Quaternion<Scalar>& q) {
+                          return std::vector<Scalar>{q.w(), q.x(), q.y(), q.z()};
+                        });
+  record_spline<Scalar>(method, "translation", r.factors.translation, [](const V3& v) {
+    return std::vector<Scalar>{v(0), v(1), v(2)};
+  });
+  std::ostringstream os;
+  os << form << ", degree " << r.motion.degree() << ", " << r.motion.segments()
+     << " segments, order " << kernel::construction_order(sopt.translation, r.k, r.l)
+     << ", max residual " << worst;
+  summary = os.str();
+  return io::motion_to_json(r.motion, method, units);
+}
+
 int cmd_interpolate(const InterpolateArgs& args) {
   const io::PoseSet set = io::read_poses(args.poses);
   const std::size_t count = set.poses.size();
@@ -306,29 +351,48 @@ int cmd_interpolate(const InterpolateArgs& args) {
                                      to_int(args.trt_degrees.substr(comma + 1)));
   }
   const std::string form = !args.form.empty() ? args.form : (count <= 6 ? "bezier" : "bspline");
-  if (form == "bspline" || form == "c1")
-    throw Error(Errc::invalid_input,
-                "--form " + form +
-                    (args.form.empty() ? " (the default for more than six poses)" : "") +
-                    ": spline motions are not available yet; use --form bezier to force one Bezier "
-                    "motion through all " +
-                    std::to_string(count) + " poses");
-  if (form != "bezier")
+  if (form != "bezier" && form != "bspline" && form != "c1")
     throw Error(Errc::invalid_input,
                 "--form: expected bezier, bspline or c1, found '" + form + "'");
+  const bool spline = form != "bezier";
   const int m = static_cast<int>(count) - 1;
-  if (args.degree >= 0 && args.degree != kernel::rotation_degree(opt.rotation, m))
-    throw Error(Errc::invalid_input,
-                "--degree " + std::to_string(args.degree) + ": a Bezier motion through " +
-                    std::to_string(count) + " poses has rotational degree " +
-                    std::to_string(kernel::rotation_degree(opt.rotation, m)) +
-                    " with this method; --degree chooses the degree of B-spline motions");
-  if (args.translation_degree >= 0 && args.translation_degree != m &&
-      opt.translation != kernel::TranslationMethod::trt)
-    throw Error(Errc::invalid_input, "--translation-degree " +
-                                         std::to_string(args.translation_degree) +
-                                         ": a Bezier motion through " + std::to_string(count) +
-                                         " poses has translational degree " + std::to_string(m));
+  kernel::SplineOptions sopt;
+  sopt.translation = opt.translation;
+  if (spline) {
+    if (opt.rotation != kernel::RotationMethod::elliptic)
+      throw Error(Errc::invalid_input,
+                  "--form " + form + " interpolates rotations by the elliptic method; --rotation " +
+                      args.rotation + " is for --form bezier");
+    if (opt.translation == kernel::TranslationMethod::trt)
+      throw Error(
+          Errc::invalid_input,
+          "--form " + form + ": --translation trt is for --form bezier (use tr or minimal)");
+    if (form == "c1" && args.exact)
+      throw Error(Errc::invalid_input,
+                  "--form c1 estimates velocities with square roots and logarithms: no --exact");
+    if (form == "c1" && ((args.degree >= 0 && args.degree != 3) ||
+                         (args.translation_degree >= 0 && args.translation_degree != 3)))
+      throw Error(Errc::invalid_input,
+                  "--form c1 has cubic factors: --degree and --translation-degree are 3");
+    if (args.degree == 0 || args.translation_degree == 0 || args.degree > 25 ||
+        args.translation_degree > 25)
+      throw Error(Errc::invalid_input, "--degree and --translation-degree: expected 1 to 25");
+    if (args.degree > 0) sopt.k = args.degree;
+    if (args.translation_degree > 0) sopt.l = args.translation_degree;
+  } else {
+    if (args.degree >= 0 && args.degree != kernel::rotation_degree(opt.rotation, m))
+      throw Error(Errc::invalid_input,
+                  "--degree " + std::to_string(args.degree) + ": a Bezier motion through " +
+                      std::to_string(count) + " poses has rotational degree " +
+                      std::to_string(kernel::rotation_degree(opt.rotation, m)) +
+                      " with this method; --degree chooses the degree of B-spline motions");
+    if (args.translation_degree >= 0 && args.translation_degree != m &&
+        opt.translation != kernel::TranslationMethod::trt)
+      throw Error(Errc::invalid_input, "--translation-degree " +
+                                           std::to_string(args.translation_degree) +
+                                           ": a Bezier motion through " + std::to_string(count) +
+                                           " poses has translational degree " + std::to_string(m));
+  }
   const std::string rule_name =
       !args.param.empty() ? args.param : (set.has_t() ? "given" : "uniform");
   const auto rule = kernel::param_rule_from_string(rule_name);
@@ -348,7 +412,7 @@ int cmd_interpolate(const InterpolateArgs& args) {
   json method{{"rotation", args.rotation},
               {"translation", args.translation},
               {"param", kernel::to_string(*rule)},
-              {"form", "bezier"},
+              {"form", form},
               {"exact", args.exact},
               {"input_poses", io::poses_to_json(set)}};
   if (opt.translation == kernel::TranslationMethod::trt) {
@@ -366,13 +430,15 @@ int cmd_interpolate(const InterpolateArgs& args) {
     if (*rule == kernel::ParamRule::uniform)
       for (std::size_t i = 0; i < count; ++i)
         te[i] = kernel::Rational(static_cast<long>(i)) / kernel::Rational(static_cast<long>(m));
-    doc = run_interpolation(poses_e, te, opt, method, set.units, summary);
+    doc = spline ? run_spline_interpolation(poses_e, te, form, sopt, method, set.units, summary)
+                 : run_interpolation(poses_e, te, opt, method, set.units, summary);
 #else
     throw Error(Errc::invalid_input,
                 "--exact: this build has no exact arithmetic (QMOTION_WITH_CGAL=OFF)");
 #endif
   } else {
-    doc = run_interpolation(poses_d, t, opt, method, set.units, summary);
+    doc = spline ? run_spline_interpolation(poses_d, t, form, sopt, method, set.units, summary)
+                 : run_interpolation(poses_d, t, opt, method, set.units, summary);
   }
   io::write_file_atomic(args.output, doc.dump(1) + "\n");
   std::cerr << "qmotion: wrote " << args.output << " (" << summary << ")\n";
@@ -570,14 +636,14 @@ int run(int argc, char** argv) {
                      "Parameters: given (default when every pose has t), uniform (default "
                      "otherwise), chordal, star-chordal, "
                      "centripetal, angular, angular-chordal");
-  interp->add_option(
-      "--form", ia.form,
-      "bezier (default up to six poses) | bspline (default beyond; not yet available) | c1");
-  interp->add_option(
-      "--degree", ia.degree,
-      "Rotational degree (B-spline motions; a Bezier motion's is fixed by the method)");
+  interp->add_option("--form", ia.form,
+                     "bezier (default up to six poses) | bspline (default beyond: global B-spline, "
+                     "linear cost) | c1 (Algorithm 2: local C1 cubic pieces)");
+  interp->add_option("--degree", ia.degree,
+                     "Rotational degree of B-spline motions (default 3; a Bezier motion's is fixed "
+                     "by the method)");
   interp->add_option("--translation-degree", ia.translation_degree,
-                     "Translational degree (B-spline motions)");
+                     "Translational degree of B-spline motions (default 3)");
   interp->add_flag(
       "--exact", ia.exact,
       "Compute in exact rational arithmetic from the file's digits (quaternion rotations only)");

@@ -283,7 +283,6 @@ TEST(Cli, InterpolateRefusalsExitWithTheirStatusAndLeaveNoFile) {
        3,
        "inaccessible"},
       {{shared_data("poses/helix_40.json"), "--form", "bezier"}, 3, "--form bspline"},
-      {{shared_data("poses/helix_40.json")}, 2, "not available yet"},
       {{shared_data("poses/five_positions.json"), "--exact"}, 2, "pose 1"},
       {{shared_data("poses/five_positions.json"), "--rotation", "slerp"}, 2, "--rotation"},
       {{shared_data("poses/five_positions.json"), "--translation", "tt"}, 2, "--translation"},
@@ -476,6 +475,70 @@ TEST(Cli, BadProfilesAndPolesLeaveNoFile) {
   EXPECT_EQ(wrong_ext.status, 2);
   const Result both = run({"check", (scratch_dir() / "x.json").string(), "--motion", m.string()});
   EXPECT_EQ(both.status, 2);
+}
+
+TEST(Cli, SplineMotionsByDefaultBeyondSixPoses) {
+  const fs::path m = scratch_dir() / "helix_bspline.json";
+  Result r = run({"interpolate", shared_data("poses/helix_40.json"), "-o", m.string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  json i = run_json({"info", m.string()});
+  EXPECT_EQ(i["basis"], "bspline");
+  EXPECT_EQ(i["degree"], 6);  // cubic rotation x cubic translation
+  EXPECT_EQ(i["order"], 9);   // 2k + l
+  EXPECT_EQ(i["method"]["form"], "bspline");
+  for (const auto& x : i["interpolation_residual"]) EXPECT_LE(x.get<double>(), 1e-10);
+  EXPECT_LE(i["plucker_residual"].get<double>(), 1e-12);
+  // Other degrees; Algorithm 2; minimal order.
+  for (const auto& extra :
+       {std::vector<std::string>{"--degree", "5", "--translation-degree", "4"},
+        std::vector<std::string>{"--form", "c1"},
+        std::vector<std::string>{"--form", "c1", "--translation", "minimal"},
+        std::vector<std::string>{"--translation", "minimal", "--degree", "2"}}) {
+    std::vector<std::string> args = {"interpolate", shared_data("poses/helix_40.json"), "-o",
+                                     m.string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    r = run(args);
+    ASSERT_EQ(r.status, 0) << extra[1] << ": " << r.err;
+    i = run_json({"info", m.string()});
+    for (const auto& x : i["interpolation_residual"]) EXPECT_LE(x.get<double>(), 1e-10);
+    for (const std::string ext : {".json", ".step", ".igs"}) {
+      const fs::path s = scratch_dir() / ("spline_surface" + ext),
+                     c = scratch_dir() / ("spline_curve" + ext);
+      ASSERT_EQ(run({"sweep", m.string(), "--profile", "circle:6", "-o", s.string()}).status, 0);
+      ASSERT_EQ(run({"trajectory", m.string(), "--point", "4,0,2", "-o", c.string()}).status, 0);
+      EXPECT_LE(check(s, m, {"--profile", "circle:6"})["relative_deviation"].get<double>(), 1e-11)
+          << extra[1] << ext;
+      EXPECT_LE(check(c, m, {"--point", "4,0,2"})["relative_deviation"].get<double>(), 1e-11)
+          << extra[1] << ext;
+    }
+  }
+  // Exact B-spline motion from rational input.
+  r = run({"interpolate", shared_data("poses/rational_exact.json"), "--form", "bspline", "--exact",
+           "-o", m.string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  i = run_json({"info", "--exact", m.string()});
+  EXPECT_EQ(i["plucker_residual"], 0.0);
+  for (const auto& x : i["interpolation_residual"]) EXPECT_EQ(x.get<double>(), 0.0);
+}
+
+TEST(Cli, SplineOptionRefusals) {
+  const std::string poses = shared_data("poses/helix_40.json");
+  const fs::path out = scratch_dir() / "refused_spline.json";
+  for (const auto& [args, needle] : std::vector<std::pair<std::vector<std::string>, std::string>>{
+           {{"--rotation", "affine"}, "elliptic"},
+           {{"--translation", "trt"}, "trt"},
+           {{"--form", "c1", "--exact"}, "--exact"},
+           {{"--form", "c1", "--degree", "4"}, "cubic"},
+           {{"--degree", "0"}, "--degree"},
+           {{"--form", "nurbs"}, "--form"}}) {
+    fs::remove(out);
+    std::vector<std::string> a = {"interpolate", poses, "-o", out.string()};
+    a.insert(a.end(), args.begin(), args.end());
+    const Result r = run(a);
+    EXPECT_EQ(r.status, 2) << args[0] << ": " << r.err;
+    EXPECT_NE(r.err.find(needle), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out));
+  }
 }
 
 TEST(Cli, DemoWritesEveryFormatAndAnExactnessReport) {
