@@ -132,6 +132,30 @@ bool is_negligible_quaternion(const Quaternion<Scalar>& q, double scale) {
   }
 }
 
+/// Relative residual at every pose; exactly 0 where Q(t_i) is exactly proportional to
+/// P_i (exact Scalar).
+template <typename Scalar>
+std::vector<double> pose_residuals(const QMotion<Scalar>& m, const std::vector<Pose<Scalar>>& poses,
+                                   const std::vector<Scalar>& t) {
+  std::vector<double> out;
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    const auto qi = evaluate(m, t[i]);
+    const auto pi = poses[i].dual_quaternion();
+    if constexpr (is_exact_v<Scalar>) {
+      bool proportional = true;
+      for (int c = 0; c < 8 && proportional; ++c)
+        for (int d = c + 1; d < 8 && proportional; ++d)
+          proportional = qi[c] * pi[d] == qi[d] * pi[c];
+      if (!proportional)
+        throw Error(Errc::internal, "exact interpolation missed pose " + std::to_string(i));
+      out.push_back(0.0);
+    } else {
+      out.push_back(pose_residual(qi, pi));
+    }
+  }
+  return out;
+}
+
 inline std::string format_double(double x) {
   std::ostringstream os;
   os.precision(3);
@@ -368,25 +392,9 @@ Interpolation<Scalar> interpolate_bezier(const std::vector<Pose<Scalar>>& poses,
         0.01 * rot_scale)
       out.near_inaccessible.push_back(i);
   // Check every pose: exactly proportional for exact Scalar, within max_residual otherwise.
+  out.residuals = detail::pose_residuals(out.motion, poses, t);
   for (int i = 0; i <= m; ++i) {
-    const auto qi = evaluate(q, t[static_cast<std::size_t>(i)]);
-    const auto pi = poses[static_cast<std::size_t>(i)].dual_quaternion();
-    DualQuaternion<double> qd, pd;
-    for (int c = 0; c < 8; ++c) {
-      qd[c] = to_double(qi[c]);
-      pd[c] = to_double(pi[c]);
-    }
-    double res = pose_residual(qd, pd);
-    if constexpr (is_exact_v<Scalar>) {
-      bool proportional = true;
-      for (int c = 0; c < 8 && proportional; ++c)
-        for (int d = c + 1; d < 8 && proportional; ++d)
-          proportional = qi[c] * pi[d] == qi[d] * pi[c];
-      if (!proportional)
-        throw Error(Errc::internal, "exact interpolation missed pose " + std::to_string(i));
-      res = 0.0;
-    }
-    out.residuals.push_back(res);
+    const double res = out.residuals[static_cast<std::size_t>(i)];
     if (!(res <= options.max_residual))
       throw Error(Errc::numerical_failure,
                   "interpolation residual " + detail::format_double(res) + " at pose " +

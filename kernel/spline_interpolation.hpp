@@ -82,30 +82,6 @@ BSpline<Eigen::Matrix<Scalar, 3, 1>> vector_spline(int p, std::vector<Scalar> kn
   return BSpline<Eigen::Matrix<Scalar, 3, 1>>::make(p, std::move(knots), std::move(c));
 }
 
-/// Relative residual at every pose; exactly 0 where Q(t_i) is exactly proportional to
-/// P_i (exact Scalar).
-template <typename Scalar>
-std::vector<double> pose_residuals(const QMotion<Scalar>& m, const std::vector<Pose<Scalar>>& poses,
-                                   const std::vector<Scalar>& t) {
-  std::vector<double> out;
-  for (std::size_t i = 0; i < poses.size(); ++i) {
-    const auto qi = evaluate(m, t[i]);
-    const auto pi = poses[i].dual_quaternion();
-    if constexpr (is_exact_v<Scalar>) {
-      bool proportional = true;
-      for (int c = 0; c < 8 && proportional; ++c)
-        for (int d = c + 1; d < 8 && proportional; ++d)
-          proportional = qi[c] * pi[d] == qi[d] * pi[c];
-      if (!proportional)
-        throw Error(Errc::internal, "exact interpolation missed pose " + std::to_string(i));
-      out.push_back(0.0);
-    } else {
-      out.push_back(pose_residual(qi, pi));
-    }
-  }
-  return out;
-}
-
 /// The Q-motion of the factors: TR (2 + eps p) Q_rot (30), or minimal order
 /// (2 |Q_rot|^2 + eps w) Q_rot (36), as exact spline products (Bezier decomposition, (29),
 /// reassembly with the multiplicities the factors' continuity allows).

@@ -130,6 +130,38 @@ void write_stl(const std::string& path, const sweep::NurbsSurface<double>& s, in
   io::write_file_atomic(path, os.str());
 }
 
+/// Writes a curve or surface in the chosen format (JSON records units and any approximation).
+template <typename Geometry>
+void write_geometry(Format f, const GeometryOptions& opt, const Geometry& g,
+                    const io::ExportInfo& info, const ExportResult& r) {
+  constexpr bool is_surface = std::is_same_v<Geometry, sweep::NurbsSurface<double>>;
+  switch (f) {
+    case Format::json: {
+      json doc;
+      if constexpr (is_surface) {
+        doc = io::surface_to_json(g);
+      } else {
+        doc = io::curve_to_json(g);
+      }
+      doc["units"] = info.units;
+      if (r.approx_deviation)
+        doc["approximation"] = {{"max_degree", opt.max_degree},
+                                {"max_deviation", *r.approx_deviation}};
+      io::write_file_atomic(opt.output, doc.dump(1) + "\n");
+      break;
+    }
+    case Format::step:
+      io::write_step(opt.output, g, info);
+      break;
+    case Format::iges:
+      io::write_iges(opt.output, g, info);
+      break;
+    case Format::stl:
+      if constexpr (is_surface) write_stl(opt.output, g, 64);
+      break;
+  }
+}
+
 }  // namespace
 
 Eigen::Vector3d parse_point(const std::string& text, const std::string& flag) {
@@ -179,25 +211,7 @@ ExportResult export_trajectory(const LoadedMotion& lm, const Eigen::Vector3d& po
   r.min_weight = min_weight(c.weights);
   const auto info = export_info(
       lm, opt, "trajectory of (" + fmt(point(0)) + "," + fmt(point(1)) + "," + fmt(point(2)) + ")");
-  switch (f) {
-    case Format::json: {
-      json doc = io::curve_to_json(c);
-      doc["units"] = info.units;
-      if (r.approx_deviation)
-        doc["approximation"] = {{"max_degree", opt.max_degree},
-                                {"max_deviation", *r.approx_deviation}};
-      io::write_file_atomic(opt.output, doc.dump(1) + "\n");
-      break;
-    }
-    case Format::step:
-      io::write_step(opt.output, c, info);
-      break;
-    case Format::iges:
-      io::write_iges(opt.output, c, info);
-      break;
-    case Format::stl:
-      break;
-  }
+  write_geometry(f, opt, c, info, r);
   return r;
 }
 
@@ -257,26 +271,7 @@ ExportResult export_surface(const LoadedMotion& lm, const sweep::NurbsCurve<doub
   r.min_weight = 1.0;
   for (const auto& row : s.weights) r.min_weight = std::min(r.min_weight, min_weight(row));
   const auto info = export_info(lm, opt, "kinematic surface of " + profile_name);
-  switch (f) {
-    case Format::json: {
-      json doc = io::surface_to_json(s);
-      doc["units"] = info.units;
-      if (r.approx_deviation)
-        doc["approximation"] = {{"max_degree", opt.max_degree},
-                                {"max_deviation", *r.approx_deviation}};
-      io::write_file_atomic(opt.output, doc.dump(1) + "\n");
-      break;
-    }
-    case Format::step:
-      io::write_step(opt.output, s, info);
-      break;
-    case Format::iges:
-      io::write_iges(opt.output, s, info);
-      break;
-    case Format::stl:
-      write_stl(opt.output, s, 64);
-      break;
-  }
+  write_geometry(f, opt, s, info, r);
   return r;
 }
 
