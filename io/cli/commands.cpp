@@ -626,7 +626,8 @@ int run(int argc, char** argv) {
   interp->add_option("POSES", ia.poses, "Pose file (.json or .csv)")->required();
   interp->add_option("-o,--output", ia.output, "Motion JSON file to write")->required();
   interp->add_option("--rotation", ia.rotation,
-                     "Rotation interpolation: elliptic (default), affine, projective");
+                     "Rotation interpolation: elliptic (default), affine, projective (the last two "
+                     "for --form bezier)");
   interp->add_option("--translation", ia.translation,
                      "Translation: tr (default), trt, minimal (minimal order)");
   interp->add_option(
