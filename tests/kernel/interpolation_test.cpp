@@ -254,28 +254,42 @@ TEST(Interpolation, EllipticIsInvariantUnderRotationsOfBothSpaces) {
   }
 }
 
+/// The poses after a rotation D of the fixed space: D * P_i.
+std::vector<Pose<double>> rotated_fixed_space(std::vector<Pose<double>> p,
+                                              const Quaternion<double>& D) {
+  for (auto& q : p) {
+    q.position = kernel::rotate(D, q.position);
+    q.rotation = D * q.rotation;
+  }
+  return p;
+}
+
+/// The motion left * Q(t) * right (a fixed displacement of either space).
+kernel::QMotion<double> multiplied(const kernel::QMotion<double>& q,
+                                   const DualQuaternion<double>& left,
+                                   const DualQuaternion<double>& right) {
+  std::vector<DualQuaternion<double>> ctrl;
+  for (const auto& b : q.curve.ctrl()) ctrl.push_back(left * b * right);
+  return kernel::QMotion<double>{
+      kernel::Basis::bezier,
+      kernel::BSpline<DualQuaternion<double>>::make(q.degree(), q.curve.knots(), ctrl)};
+}
+
+const DualQuaternion<double> kIdentity =
+    DualQuaternion<double>::from_real(Quaternion<double>::real(1.0));
+
 TEST(Interpolation, AffineDependsOnTheOrientationOfTheFixedSpace) {
   const auto p = random_poses(22, 5);
   const auto t = params_of(p);
   const Quaternion<double> D = unit(0.9, Eigen::Vector3d(0.3, 1, -1));
-  std::vector<Pose<double>> left = p;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    left[i].position = kernel::rotate(D, p[i].position);
-    left[i].rotation = D * p[i].rotation;
-  }
   const auto q =
       kernel::interpolate_bezier(p, t, options(RotationMethod::affine, TranslationMethod::tr))
           .motion;
-  const auto ql =
-      kernel::interpolate_bezier(left, t, options(RotationMethod::affine, TranslationMethod::tr))
-          .motion;
-  std::vector<DualQuaternion<double>> moved;
-  for (const auto& c : q.curve.ctrl()) moved.push_back(DualQuaternion<double>::from_real(D) * c);
-  const kernel::QMotion<double> dq{
-      kernel::Basis::bezier,
-      kernel::BSpline<DualQuaternion<double>>::make(q.degree(), q.curve.knots(), moved)};
-  EXPECT_GT(motion_distance(ql, dq), 1e-6);  // not D * Q(t)
-  EXPECT_LE(motion_distance(ql, ql), 0.0);
+  const auto ql = kernel::interpolate_bezier(rotated_fixed_space(p, D), t,
+                                             options(RotationMethod::affine, TranslationMethod::tr))
+                      .motion;
+  EXPECT_GT(motion_distance(ql, multiplied(q, DualQuaternion<double>::from_real(D), kIdentity)),
+            1e-6);  // not D * Q(t)
 }
 
 TEST(Interpolation, TrtFollowsTheMovingOriginAndTrDoesNot) {
@@ -285,13 +299,7 @@ TEST(Interpolation, TrtFollowsTheMovingOriginAndTrDoesNot) {
   std::vector<Pose<double>> shifted = p;
   for (auto& q : shifted) q.position += kernel::rotate(q.rotation, c);  // P_i * (2 + eps c)
   const DualQuaternion<double> shift = DualQuaternion<double>::translation(c);
-  auto moved = [&](const kernel::QMotion<double>& q) {
-    std::vector<DualQuaternion<double>> ctrl;
-    for (const auto& b : q.curve.ctrl()) ctrl.push_back(b * shift);
-    return kernel::QMotion<double>{
-        kernel::Basis::bezier,
-        kernel::BSpline<DualQuaternion<double>>::make(q.degree(), q.curve.knots(), ctrl)};
-  };
+  auto moved = [&](const kernel::QMotion<double>& q) { return multiplied(q, kIdentity, shift); };
   for (auto r : kRotations) {
     SCOPED_TRACE(kernel::to_string(r));
     const auto trt = kernel::interpolate_bezier(p, t, options(r, TranslationMethod::trt)).motion;
@@ -309,22 +317,14 @@ TEST(Interpolation, ProjectiveIsInvariantUnderRotationsOfTheFixedSpace) {
   const auto p = random_poses(24, 5);  // m = 4: 4 divides 3m, the solution is unique
   const auto t = params_of(p);
   const Quaternion<double> D = unit(1.1, Eigen::Vector3d(2, 1, 1));
-  std::vector<Pose<double>> left = p;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    left[i].position = kernel::rotate(D, p[i].position);
-    left[i].rotation = D * p[i].rotation;
-  }
   const auto q =
       kernel::interpolate_bezier(p, t, options(RotationMethod::projective, TranslationMethod::tr))
           .motion;
-  const auto ql = kernel::interpolate_bezier(
-                      left, t, options(RotationMethod::projective, TranslationMethod::tr))
-                      .motion;
-  std::vector<DualQuaternion<double>> moved;
-  for (const auto& c : q.curve.ctrl()) moved.push_back(DualQuaternion<double>::from_real(D) * c);
-  const kernel::QMotion<double> dq{
-      kernel::Basis::bezier,
-      kernel::BSpline<DualQuaternion<double>>::make(q.degree(), q.curve.knots(), moved)};
+  const auto ql =
+      kernel::interpolate_bezier(rotated_fixed_space(p, D), t,
+                                 options(RotationMethod::projective, TranslationMethod::tr))
+          .motion;
+  const auto dq = multiplied(q, DualQuaternion<double>::from_real(D), kIdentity);
   EXPECT_LE(motion_distance(ql, dq), 1e-10);  // Proposition 3
 }
 
