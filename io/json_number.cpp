@@ -199,6 +199,4 @@ const json& require(const json& j, const std::string& key, const std::string& wh
   return *it;
 }
 
-json json_number(double v) { return json(v); }
-
 }  // namespace qmotion::io

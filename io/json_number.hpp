@@ -39,7 +39,4 @@ Number read_number(const nlohmann::json& j, const std::string& where);
 const nlohmann::json& require(const nlohmann::json& j, const std::string& key,
                               const std::string& where);
 
-/// A JSON number for v that prints with round-trip precision (17 significant digits).
-nlohmann::json json_number(double v);
-
 }  // namespace qmotion::io

@@ -21,7 +21,4 @@ struct ScalarTraits<Rational> {
   static double to_double(const Rational& x) { return CGAL::to_double(x); }
 };
 
-/// Nearest rational of a double: exact (every finite double is a dyadic rational).
-inline Rational exact_from_double(double x) { return Rational(x); }
-
 }  // namespace qmotion::kernel

@@ -93,6 +93,37 @@ std::vector<Quaternion<Scalar>> normalized_rotations(const std::vector<Pose<Scal
   return R;
 }
 
+/// Relative residual (pose_residual) of the motion at every pose P_i at t_i. Exact Scalar:
+/// 0 where Q(t_i) is exactly proportional to P_i, else the residual in double.
+template <typename Scalar>
+std::vector<double> pose_residuals(const QMotion<Scalar>& m, const std::vector<Pose<Scalar>>& poses,
+                                   const std::vector<Scalar>& t) {
+  std::vector<double> out;
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    const auto qi = evaluate(m, t[i]);
+    const auto pi = poses[i].dual_quaternion();
+    if constexpr (is_exact_v<Scalar>) {
+      bool proportional = true;
+      for (int c = 0; c < 8 && proportional; ++c)
+        for (int d = c + 1; d < 8 && proportional; ++d)
+          proportional = qi[c] * pi[d] == qi[d] * pi[c];
+      if (proportional) {
+        out.push_back(0.0);
+        continue;
+      }
+      DualQuaternion<double> qd, pd;
+      for (int c = 0; c < 8; ++c) {
+        qd[c] = to_double(qi[c]);
+        pd[c] = to_double(pi[c]);
+      }
+      out.push_back(pose_residual(qd, pd));
+    } else {
+      out.push_back(pose_residual(qi, pi));
+    }
+  }
+  return out;
+}
+
 namespace detail {
 
 template <typename Scalar>
@@ -132,28 +163,17 @@ bool is_negligible_quaternion(const Quaternion<Scalar>& q, double scale) {
   }
 }
 
-/// Relative residual at every pose; exactly 0 where Q(t_i) is exactly proportional to
-/// P_i (exact Scalar).
+/// Interpolation results must be exact in exact arithmetic: a pose missed there is a bug.
 template <typename Scalar>
-std::vector<double> pose_residuals(const QMotion<Scalar>& m, const std::vector<Pose<Scalar>>& poses,
-                                   const std::vector<Scalar>& t) {
-  std::vector<double> out;
-  for (std::size_t i = 0; i < poses.size(); ++i) {
-    const auto qi = evaluate(m, t[i]);
-    const auto pi = poses[i].dual_quaternion();
-    if constexpr (is_exact_v<Scalar>) {
-      bool proportional = true;
-      for (int c = 0; c < 8 && proportional; ++c)
-        for (int d = c + 1; d < 8 && proportional; ++d)
-          proportional = qi[c] * pi[d] == qi[d] * pi[c];
-      if (!proportional)
+std::vector<double> checked_residuals(const QMotion<Scalar>& m,
+                                      const std::vector<Pose<Scalar>>& poses,
+                                      const std::vector<Scalar>& t) {
+  std::vector<double> r = pose_residuals(m, poses, t);
+  if constexpr (is_exact_v<Scalar>)
+    for (std::size_t i = 0; i < r.size(); ++i)
+      if (r[i] != 0.0)
         throw Error(Errc::internal, "exact interpolation missed pose " + std::to_string(i));
-      out.push_back(0.0);
-    } else {
-      out.push_back(pose_residual(qi, pi));
-    }
-  }
-  return out;
+  return r;
 }
 
 inline std::string format_double(double x) {
@@ -392,7 +412,7 @@ Interpolation<Scalar> interpolate_bezier(const std::vector<Pose<Scalar>>& poses,
         0.01 * rot_scale)
       out.near_inaccessible.push_back(i);
   // Check every pose: exactly proportional for exact Scalar, within max_residual otherwise.
-  out.residuals = detail::pose_residuals(out.motion, poses, t);
+  out.residuals = detail::checked_residuals(out.motion, poses, t);
   for (int i = 0; i <= m; ++i) {
     const double res = out.residuals[static_cast<std::size_t>(i)];
     if (!(res <= options.max_residual))

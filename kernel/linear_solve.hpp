@@ -35,14 +35,6 @@ MatX<Scalar> bernstein_collocation(const std::vector<Scalar>& t, int k, const Sc
   return B;
 }
 
-/// sigma_min / sigma_max of A (double): the reciprocal 2-norm condition number.
-inline double inverse_condition(const MatX<double>& A) {
-  if (A.size() == 0) return 1.0;
-  const Eigen::JacobiSVD<MatX<double>> svd(A);
-  const auto& s = svd.singularValues();
-  return s(0) > 0 ? s(s.size() - 1) / s(0) : 0.0;
-}
-
 /// Solves the square system A X = B. Exact Scalar: full-pivot LU, exact; refuses a
 /// singular A. Double: full-pivot LU, refusing A when its estimated reciprocal condition
 /// number (1-norm) is below 1e-14 (numerically singular). Throws Errc::numerical_failure

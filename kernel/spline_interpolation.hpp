@@ -114,7 +114,7 @@ SplineInterpolation<Scalar> finish(MotionFactors<Scalar> f, int k, int l,
                                    const char* form) {
   SplineInterpolation<Scalar> out{
       QMotion<Scalar>{Basis::bspline, compose(f)}, std::move(f), k, l, {}};
-  out.residuals = pose_residuals(out.motion, poses, t);
+  out.residuals = checked_residuals(out.motion, poses, t);
   for (std::size_t i = 0; i < out.residuals.size(); ++i)
     if (!(out.residuals[i] <= max_residual))
       throw Error(Errc::numerical_failure, std::string(form) + " motion: interpolation residual " +

@@ -45,7 +45,7 @@ template <typename Scalar>
 json interpolation_residuals(const kernel::QMotion<Scalar>& m,
                              const std::vector<kernel::Pose<Scalar>>& P, const io::MotionFile& f,
                              Scalar /*tag*/) {
-  json res = json::array();
+  std::vector<Scalar> ts;
   const json& params = f.method.contains("parameters") ? f.method["parameters"] : json();
   for (std::size_t i = 0; i < P.size(); ++i) {
     std::optional<Scalar> t = P[i].t;
@@ -63,24 +63,9 @@ json interpolation_residuals(const kernel::QMotion<Scalar>& m,
 #endif
     }
     if (!t) return nullptr;
-    const auto q = kernel::evaluate(m, *t);
-    const auto p = P[i].dual_quaternion();
-    bool proportional = kernel::is_exact_v<Scalar>;
-    if constexpr (kernel::is_exact_v<Scalar>)
-      for (int c = 0; c < 8; ++c)
-        for (int d = c + 1; d < 8; ++d) proportional = proportional && q[c] * p[d] == q[d] * p[c];
-    if (proportional) {
-      res.push_back(0.0);
-      continue;
-    }
-    kernel::DualQuaternion<double> qd, pd;
-    for (int c = 0; c < 8; ++c) {
-      qd[c] = kernel::to_double(q[c]);
-      pd[c] = kernel::to_double(p[c]);
-    }
-    res.push_back(kernel::pose_residual(qd, pd));
+    ts.push_back(*t);
   }
-  return res;
+  return json(kernel::pose_residuals(m, P, ts));
 }
 
 /// The order a recorded interpolation method guarantees (kernel::construction_order).
