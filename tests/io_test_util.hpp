@@ -1,8 +1,7 @@
-// tests/io_test_util.hpp: shared data folder and error-message checks for io tests.
+// tests/io_test_util.hpp: test data folder and error-message checks for io tests.
 #pragma once
 #include <gtest/gtest.h>
 
-#include <cstdlib>
 #include <functional>
 #include <string>
 #include <vector>
@@ -11,10 +10,9 @@
 
 namespace qmotion::test {
 
-/// The shared sample data folder (../shared/data), from QMOTION_SHARED_DATA.
-inline std::string shared_data(const std::string& rel) {
-  const char* d = std::getenv("QMOTION_SHARED_DATA");
-  return std::string(d ? d : "../shared/data") + "/" + rel;
+/// A file of the repository's test data (tests/data), whose path the build defines.
+inline std::string test_data(const std::string& rel) {
+  return std::string(QMOTION_TEST_DATA) + "/" + rel;
 }
 
 /// Runs f, expecting a qmotion::Error with `code` whose message contains every needle.

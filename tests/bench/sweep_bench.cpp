@@ -49,10 +49,7 @@ std::string motion_file(const std::string& poses, int count, kernel::Translation
   return path;
 }
 
-std::string shared(const std::string& rel) {
-  const char* d = std::getenv("QMOTION_SHARED_DATA");
-  return std::string(d ? d : "../shared/data") + "/" + rel;
-}
+std::string test_data(const std::string& rel) { return std::string(QMOTION_TEST_DATA) + "/" + rel; }
 
 sweep::NurbsSurface<double> surface_from_file(const std::string& path) {
   const auto f = io::read_motion(path);
@@ -61,7 +58,7 @@ sweep::NurbsSurface<double> surface_from_file(const std::string& path) {
 }
 
 void BM_DemoMotionFileToStep(benchmark::State& st) {  // five poses, elliptic + TR: 12 x 2
-  const std::string path = motion_file(shared("poses/five_positions.json"), 5,
+  const std::string path = motion_file(test_data("poses/five_positions.json"), 5,
                                        kernel::TranslationMethod::tr, "bench_demo.json");
   const std::string out = (fs::temp_directory_path() / "bench_demo.step").string();
   for (auto _ : st) io::write_step(out, surface_from_file(path), {});
@@ -69,7 +66,7 @@ void BM_DemoMotionFileToStep(benchmark::State& st) {  // five poses, elliptic + 
 BENCHMARK(BM_DemoMotionFileToStep)->Unit(benchmark::kMillisecond);
 
 void BM_Degree16x2MotionFileToStep(benchmark::State& st) {  // nine poses, minimal order: 2m = 16
-  const std::string path = motion_file(shared("poses/helix_40.json"), 9,
+  const std::string path = motion_file(test_data("poses/helix_40.json"), 9,
                                        kernel::TranslationMethod::minimal, "bench_16.json");
   const std::string out = (fs::temp_directory_path() / "bench_16.step").string();
   st.SetLabel("degree " + std::to_string(surface_from_file(path).degree_u) + " x 2");
@@ -78,7 +75,7 @@ void BM_Degree16x2MotionFileToStep(benchmark::State& st) {  // nine poses, minim
 BENCHMARK(BM_Degree16x2MotionFileToStep)->Unit(benchmark::kMillisecond);
 
 void BM_Degree16x2SurfaceBuildOnly(benchmark::State& st) {
-  const std::string path = motion_file(shared("poses/helix_40.json"), 9,
+  const std::string path = motion_file(test_data("poses/helix_40.json"), 9,
                                        kernel::TranslationMethod::minimal, "bench_16b.json");
   const auto f = io::read_motion(path);
   const auto m = io::to_motion_double(f);
@@ -91,7 +88,7 @@ BENCHMARK(BM_Degree16x2SurfaceBuildOnly)->Unit(benchmark::kMicrosecond);
 /// Peer: OpenCASCADE fits a B-spline surface to a grid of exact points of the same
 /// surface (what a sweep without exact rational motions has to do). Reports its deviation.
 void BM_Peer_OcctFitDegree16x2Surface(benchmark::State& st) {
-  const std::string path = motion_file(shared("poses/helix_40.json"), 9,
+  const std::string path = motion_file(test_data("poses/helix_40.json"), 9,
                                        kernel::TranslationMethod::minimal, "bench_16c.json");
   const auto f = io::read_motion(path);
   const auto m = io::to_motion_double(f);

@@ -170,9 +170,8 @@ TEST(Cli, BadMotionFilesExitTwoNamingTheFile) {
 TEST(Cli, BadPoseFilesExitTwoAndLeaveNoOutput) {
   std::vector<fs::path> files;
   for (const auto& e : fs::directory_iterator(kData + "/bad_poses")) files.push_back(e.path());
-  for (const auto& e : fs::directory_iterator(shared_data("poses/bad"))) files.push_back(e.path());
   files.push_back(scratch_dir() / "unreadable.json");  // does not exist
-  ASSERT_GE(files.size(), 14u);                        // the shared four and ten more of our own
+  ASSERT_GE(files.size(), 24u);  // the four sample bad files and twenty of our own
   for (const auto& in : files) {
     const fs::path out = scratch_dir() / "out.json";
     fs::remove(out);
@@ -194,14 +193,13 @@ TEST(Cli, PosesConvertsCsvToJson) {
   ASSERT_EQ(j["poses"].size(), 3u);
   EXPECT_EQ(j["poses"][2]["position"], json({10, 10, 5}));
   EXPECT_EQ(j["poses"][1]["rotation"]["quaternion"], json({0.5, 0.5, 0.5, 0.5}));
-  const json s = run_json({"poses", shared_data("poses/five_positions.json")});
+  const json s = run_json({"poses", test_data("poses/five_positions.json")});
   EXPECT_EQ(s["poses"], 5);
 }
 
 TEST(Cli, InterpolateWritesAMotionThatInterpolatesEveryPose) {
   const fs::path out = scratch_dir() / "five.json";
-  const Result r =
-      run({"interpolate", shared_data("poses/five_positions.json"), "-o", out.string()});
+  const Result r = run({"interpolate", test_data("poses/five_positions.json"), "-o", out.string()});
   ASSERT_EQ(r.status, 0) << r.err;
   const json i = run_json({"info", out.string()});
   EXPECT_EQ(i["degree"], 8);  // elliptic + TR, m = 4: k + m
@@ -229,7 +227,7 @@ TEST(Cli, InterpolateEveryMethodAndRule) {
            {"uniform", "chordal", "star-chordal", "centripetal", "angular", "angular-chordal"}) {
         const fs::path out = scratch_dir() / "m.json";
         const Result r =
-            run({"interpolate", shared_data("poses/three_positions_no_t.json"), "-o", out.string(),
+            run({"interpolate", test_data("poses/three_positions_no_t.json"), "-o", out.string(),
                  "--rotation", rot, "--translation", tr, "--param", param});
         ASSERT_EQ(r.status, 0) << rot << " " << tr << " " << param << ": "
                                << r.err;  // TRT: default split (1, 0)
@@ -243,7 +241,7 @@ TEST(Cli, InterpolateEveryMethodAndRule) {
 TEST(Cli, InterpolateExactIsExact) {
   for (const std::string tr : {"tr", "trt", "minimal"}) {
     const fs::path out = scratch_dir() / ("exact_" + tr + ".json");
-    const Result r = run({"interpolate", shared_data("poses/rational_exact.json"), "--exact",
+    const Result r = run({"interpolate", test_data("poses/rational_exact.json"), "--exact",
                           "--translation", tr, "-o", out.string()});
     ASSERT_EQ(r.status, 0) << r.err;
     const json i = run_json({"info", "--exact", out.string()});
@@ -269,12 +267,11 @@ TEST(Cli, InterpolateRefusalsExitWithTheirStatusAndLeaveNoFile) {
       {{d + "six_poses.json", "--translation", "trt", "--trt-degrees", "2,2"},
        2,
        "singular for every data set"},
-      {{shared_data("poses/three_positions_no_t.json"), "--translation", "trt", "--trt-degrees",
+      {{test_data("poses/three_positions_no_t.json"), "--translation", "trt", "--trt-degrees",
         "1,1"},
        2,
        "L1 + L2 = m - 1"},
-      {{shared_data("poses/three_positions_no_t.json"), "--translation", "trt", "--trt-degrees",
-        "x"},
+      {{test_data("poses/three_positions_no_t.json"), "--translation", "trt", "--trt-degrees", "x"},
        2,
        "--trt-degrees"},
       {{kData + "/good_poses.csv", "--translation", "trt", "--trt-degrees", "0,1"}, 0, ""},
@@ -282,15 +279,15 @@ TEST(Cli, InterpolateRefusalsExitWithTheirStatusAndLeaveNoFile) {
       {{d + "projective_inaccessible.json", "--rotation", "projective", "--exact"},
        3,
        "inaccessible"},
-      {{shared_data("poses/helix_40.json"), "--form", "bezier"}, 3, "--form bspline"},
-      {{shared_data("poses/five_positions.json"), "--exact"}, 2, "pose 1"},
-      {{shared_data("poses/five_positions.json"), "--rotation", "slerp"}, 2, "--rotation"},
-      {{shared_data("poses/five_positions.json"), "--translation", "tt"}, 2, "--translation"},
-      {{shared_data("poses/five_positions.json"), "--param", "random"}, 2, "--param"},
-      {{shared_data("poses/three_positions_no_t.json"), "--param", "given"}, 2, "needs a t"},
-      {{shared_data("poses/five_positions.json"), "--degree", "3"}, 2, "--degree"},
-      {{shared_data("poses/five_positions.json"), "--trt-degrees", "3,0"}, 2, "--translation trt"},
-      {{shared_data("poses/bad/bad_nan.json")}, 2, "NaN"},
+      {{test_data("poses/helix_40.json"), "--form", "bezier"}, 3, "--form bspline"},
+      {{test_data("poses/five_positions.json"), "--exact"}, 2, "pose 1"},
+      {{test_data("poses/five_positions.json"), "--rotation", "slerp"}, 2, "--rotation"},
+      {{test_data("poses/five_positions.json"), "--translation", "tt"}, 2, "--translation"},
+      {{test_data("poses/five_positions.json"), "--param", "random"}, 2, "--param"},
+      {{test_data("poses/three_positions_no_t.json"), "--param", "given"}, 2, "needs a t"},
+      {{test_data("poses/five_positions.json"), "--degree", "3"}, 2, "--degree"},
+      {{test_data("poses/five_positions.json"), "--trt-degrees", "3,0"}, 2, "--translation trt"},
+      {{test_data("bad_poses/bad_nan.json")}, 2, "NaN"},
   };
   for (const auto& c : cases) {
     const fs::path out = scratch_dir() / "refused.json";
@@ -320,7 +317,7 @@ TEST(Cli, InterpolateRefusalsExitWithTheirStatusAndLeaveNoFile) {
 /// Interpolates five_positions with the given methods into the scratch folder.
 fs::path five_motion(const std::string& rot, const std::string& tr) {
   const fs::path m = scratch_dir() / ("five_" + rot + "_" + tr + ".json");
-  const Result r = run({"interpolate", shared_data("poses/five_positions.json"), "-o", m.string(),
+  const Result r = run({"interpolate", test_data("poses/five_positions.json"), "-o", m.string(),
                         "--rotation", rot, "--translation", tr});
   EXPECT_EQ(r.status, 0) << r.err;
   return m;
@@ -344,7 +341,7 @@ TEST(Cli, TrajectoriesAndSurfacesAreExactInEveryFormat) {
                  prof_igs.string()})
                 .status,
             0);
-  const std::vector<std::string> profiles = {shared_data("profiles/parabola.json"),
+  const std::vector<std::string> profiles = {test_data("profiles/parabola.json"),
                                              "circle:12",
                                              "arc:9,-30,120",
                                              "segment:-5,0,0:5,2,3",
@@ -477,7 +474,7 @@ TEST(Cli, BadProfilesAndPolesLeaveNoFile) {
 
 TEST(Cli, SplineMotionsByDefaultBeyondSixPoses) {
   const fs::path m = scratch_dir() / "helix_bspline.json";
-  Result r = run({"interpolate", shared_data("poses/helix_40.json"), "-o", m.string()});
+  Result r = run({"interpolate", test_data("poses/helix_40.json"), "-o", m.string()});
   ASSERT_EQ(r.status, 0) << r.err;
   json i = run_json({"info", m.string()});
   EXPECT_EQ(i["basis"], "bspline");
@@ -492,7 +489,7 @@ TEST(Cli, SplineMotionsByDefaultBeyondSixPoses) {
         std::vector<std::string>{"--form", "c1"},
         std::vector<std::string>{"--form", "c1", "--translation", "minimal"},
         std::vector<std::string>{"--translation", "minimal", "--degree", "2"}}) {
-    std::vector<std::string> args = {"interpolate", shared_data("poses/helix_40.json"), "-o",
+    std::vector<std::string> args = {"interpolate", test_data("poses/helix_40.json"), "-o",
                                      m.string()};
     args.insert(args.end(), extra.begin(), extra.end());
     r = run(args);
@@ -511,7 +508,7 @@ TEST(Cli, SplineMotionsByDefaultBeyondSixPoses) {
     }
   }
   // Exact B-spline motion from rational input.
-  r = run({"interpolate", shared_data("poses/rational_exact.json"), "--form", "bspline", "--exact",
+  r = run({"interpolate", test_data("poses/rational_exact.json"), "--form", "bspline", "--exact",
            "-o", m.string()});
   ASSERT_EQ(r.status, 0) << r.err;
   i = run_json({"info", "--exact", m.string()});
@@ -520,7 +517,7 @@ TEST(Cli, SplineMotionsByDefaultBeyondSixPoses) {
 }
 
 TEST(Cli, SplineOptionRefusals) {
-  const std::string poses = shared_data("poses/helix_40.json");
+  const std::string poses = test_data("poses/helix_40.json");
   const fs::path out = scratch_dir() / "refused_spline.json";
   for (const auto& [args, needle] : std::vector<std::pair<std::vector<std::string>, std::string>>{
            {{"--rotation", "affine"}, "elliptic"},

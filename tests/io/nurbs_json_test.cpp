@@ -9,7 +9,7 @@ namespace {
 
 TEST(NurbsJson, SharedProfilesReadAndEvaluate) {
   const auto arc = io::curve_from_json(
-      io::read_json_file(shared_data("profiles/quarter_circle.json")), "quarter_circle");
+      io::read_json_file(test_data("profiles/quarter_circle.json")), "quarter_circle");
   EXPECT_EQ(arc.degree, 2);
   // The rational quarter circle has radius 10 everywhere (x-z plane).
   for (int i = 0; i <= 20; ++i) {
@@ -18,7 +18,7 @@ TEST(NurbsJson, SharedProfilesReadAndEvaluate) {
     EXPECT_EQ(p.y(), 0.0);
   }
   const auto par =
-      io::curve_from_json(io::read_json_file(shared_data("profiles/parabola.json")), "parabola");
+      io::curve_from_json(io::read_json_file(test_data("profiles/parabola.json")), "parabola");
   EXPECT_EQ(par.points.size(), 3u);
 }
 

@@ -12,7 +12,7 @@ namespace {
 const std::string kData = QMOTION_TEST_DATA;
 
 TEST(Poses, SharedSamplesReadWithEveryRotationForm) {
-  const auto set = io::read_poses(shared_data("poses/five_positions.json"));
+  const auto set = io::read_poses(test_data("poses/five_positions.json"));
   ASSERT_EQ(set.poses.size(), 5u);
   EXPECT_TRUE(set.has_t());
   EXPECT_EQ(set.units, "mm");
@@ -28,13 +28,13 @@ TEST(Poses, SharedSamplesReadWithEveryRotationForm) {
   const auto s = kernel::translation_vector(P[3].dual_quaternion());
   EXPECT_NEAR((s - Eigen::Vector3d(90, 80, 10)).norm(), 0.0, 1e-12);
 
-  const auto no_t = io::read_poses(shared_data("poses/three_positions_no_t.json"));
+  const auto no_t = io::read_poses(test_data("poses/three_positions_no_t.json"));
   EXPECT_FALSE(no_t.has_t());
-  EXPECT_EQ(io::read_poses(shared_data("poses/helix_40.json")).poses.size(), 40u);
+  EXPECT_EQ(io::read_poses(test_data("poses/helix_40.json")).poses.size(), 40u);
 }
 
 TEST(Poses, RationalStringsAreKeptExactly) {
-  const auto set = io::read_poses(shared_data("poses/rational_exact.json"));
+  const auto set = io::read_poses(test_data("poses/rational_exact.json"));
   ASSERT_EQ(set.poses.size(), 4u);
   EXPECT_EQ(io::exact_from_text(set.poses[1].t->text), kernel::Rational(1) / kernel::Rational(3));
   EXPECT_EQ(io::exact_from_text(set.poses[3].position[2].text),
@@ -69,7 +69,7 @@ TEST(Poses, CsvWithAndWithoutT) {
 TEST(Poses, JsonRoundTripKeepsEveryNumber) {
   for (const std::string f : {"poses/five_positions.json", "poses/rational_exact.json",
                               "poses/three_positions_no_t.json"}) {
-    const auto a = io::read_poses(shared_data(f));
+    const auto a = io::read_poses(test_data(f));
     const auto b = io::parse_poses_json(io::poses_to_json(a).dump(), "roundtrip");
     ASSERT_EQ(a.poses.size(), b.poses.size());
     for (std::size_t i = 0; i < a.poses.size(); ++i) {
@@ -95,10 +95,10 @@ struct BadCase {
 
 TEST(Poses, EveryBadInputIsRefusedWithItsReason) {
   const std::vector<BadCase> cases = {
-      {shared_data("poses/bad/bad_decreasing_t.json"), {"pose 2", "increase"}},
-      {shared_data("poses/bad/bad_nan.json"), {"NaN"}},
-      {shared_data("poses/bad/bad_single_pose.json"), {"at least two poses"}},
-      {shared_data("poses/bad/bad_zero_quaternion.json"), {"pose 1", "zero quaternion"}},
+      {test_data("bad_poses/bad_decreasing_t.json"), {"pose 2", "increase"}},
+      {test_data("bad_poses/bad_nan.json"), {"NaN"}},
+      {test_data("bad_poses/bad_single_pose.json"), {"at least two poses"}},
+      {test_data("bad_poses/bad_zero_quaternion.json"), {"pose 1", "zero quaternion"}},
       {kData + "/bad_poses/malformed.json", {"invalid JSON", "line 1"}},
       {kData + "/bad_poses/missing_position.json", {"pose 1", "position"}},
       {kData + "/bad_poses/missing_rotation.json", {"pose 1", "rotation"}},

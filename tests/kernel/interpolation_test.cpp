@@ -119,10 +119,10 @@ void check_interpolation(const std::vector<Pose<double>>& poses, const std::vect
 }
 
 TEST(Interpolation, EveryCombinationInterpolatesTheSharedSamples) {
-  const auto five = io::to_poses_double(io::read_poses(shared_data("poses/five_positions.json")));
+  const auto five = io::to_poses_double(io::read_poses(test_data("poses/five_positions.json")));
   check_interpolation(five, params_of(five), "five_positions");
   const auto three =
-      io::to_poses_double(io::read_poses(shared_data("poses/three_positions_no_t.json")));
+      io::to_poses_double(io::read_poses(test_data("poses/three_positions_no_t.json")));
   check_interpolation(three, kernel::parametrize(three, kernel::ParamRule::chordal),
                       "three_positions");
 }
@@ -166,7 +166,7 @@ TEST(Interpolation, DegreesAndOrdersAsThePaperStates) {
 /// The orders the constructions guarantee, verified exactly (rational data has exact
 /// common factors; in double they are only approximate).
 TEST(Interpolation, OrdersAreExactOnRationalData) {
-  const auto set = io::read_poses(shared_data("poses/rational_exact.json"));
+  const auto set = io::read_poses(test_data("poses/rational_exact.json"));
   const auto P = io::to_poses_exact(set);
   std::vector<Rational> t;
   for (const auto& p : P) t.push_back(*p.t);
@@ -189,7 +189,7 @@ TEST(Interpolation, OrdersAreExactOnRationalData) {
 }
 
 TEST(Interpolation, ExactModeIsExactAndAgreesWithDouble) {
-  const auto set = io::read_poses(shared_data("poses/rational_exact.json"));
+  const auto set = io::read_poses(test_data("poses/rational_exact.json"));
   const auto Pe = io::to_poses_exact(set);
   const auto Pd = io::to_poses_double(set);
   std::vector<Rational> te;
@@ -404,7 +404,7 @@ TEST(Interpolation, RefusalsAreClear) {
       },
       Errc::invalid_input, {"two poses"}));
   // One Bezier through 40 poses: ill-conditioned, refused with a pointer to B-splines.
-  const auto helix = io::to_poses_double(io::read_poses(shared_data("poses/helix_40.json")));
+  const auto helix = io::to_poses_double(io::read_poses(test_data("poses/helix_40.json")));
   EXPECT_TRUE(throws_error(
       [&] {
         kernel::interpolate_bezier(helix, params_of(helix),

@@ -172,7 +172,7 @@ TEST(SplineMotion, AlgorithmTwoIsLocal) {
 }
 
 TEST(SplineMotion, ExactBSplineMotionsAreExact) {
-  const auto set = io::read_poses(shared_data("poses/rational_exact.json"));
+  const auto set = io::read_poses(test_data("poses/rational_exact.json"));
   const auto P = io::to_poses_exact(set);
   std::vector<Rational> t;
   for (const auto& p : P) t.push_back(*p.t);

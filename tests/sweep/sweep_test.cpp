@@ -84,7 +84,7 @@ const TranslationMethod kTr[] = {TranslationMethod::tr, TranslationMethod::trt,
                                  TranslationMethod::minimal};
 
 TEST(Trajectory, ExactAtItsMinimalDegreeForEveryMethod) {
-  const auto P = io::to_poses_double(io::read_poses(shared_data("poses/five_positions.json")));
+  const auto P = io::to_poses_double(io::read_poses(test_data("poses/five_positions.json")));
   const int m = 4;
   for (auto rot : kRot)
     for (auto tr : kTr) {
@@ -112,7 +112,7 @@ TEST(Trajectory, ExactAtItsMinimalDegreeForEveryMethod) {
 }
 
 TEST(Trajectory, ExactlyOnTheMotionInRationalArithmetic) {
-  const auto P = io::to_poses_exact(io::read_poses(shared_data("poses/rational_exact.json")));
+  const auto P = io::to_poses_exact(io::read_poses(test_data("poses/rational_exact.json")));
   std::vector<Rational> t;
   for (const auto& p : P) t.push_back(*p.t);
   for (auto tr : kTr) {
@@ -138,9 +138,9 @@ TEST(Trajectory, ExactlyOnTheMotionInRationalArithmetic) {
 std::vector<std::pair<std::string, sweep::NurbsCurve<double>>> profiles() {
   return {
       {"parabola.json",
-       io::curve_from_json(io::read_json_file(shared_data("profiles/parabola.json")), "parabola")},
+       io::curve_from_json(io::read_json_file(test_data("profiles/parabola.json")), "parabola")},
       {"quarter_circle.json",
-       io::curve_from_json(io::read_json_file(shared_data("profiles/quarter_circle.json")),
+       io::curve_from_json(io::read_json_file(test_data("profiles/quarter_circle.json")),
                            "quarter")},
       {"circle:15", sweep::circle(15.0)},
       {"segment", sweep::segment<double>(V3(-5, 2, 0), V3(5, -1, 8))},
@@ -148,7 +148,7 @@ std::vector<std::pair<std::string, sweep::NurbsCurve<double>>> profiles() {
 }
 
 TEST(KinematicSurface, ExactForEveryMethodAndProfileKind) {
-  const auto P = io::to_poses_double(io::read_poses(shared_data("poses/five_positions.json")));
+  const auto P = io::to_poses_double(io::read_poses(test_data("poses/five_positions.json")));
   for (auto rot : kRot)
     for (auto tr : kTr) {
       const Built b = build(P, rot, tr);
@@ -232,7 +232,7 @@ TEST(Profiles, TheRationalCircleIsExact) {
 }
 
 TEST(Approximation, LowerDegreeWithinTheMeasuredTolerance) {
-  const auto P = io::to_poses_double(io::read_poses(shared_data("poses/five_positions.json")));
+  const auto P = io::to_poses_double(io::read_poses(test_data("poses/five_positions.json")));
   const Built b = build(P, RotationMethod::elliptic, TranslationMethod::tr);
   const auto h = sweep::trajectory_from_factors(b.f, sweep::Vec4<double>(1, 0, 0, 1));
   ASSERT_EQ(h.degree(), 12);
