@@ -1,6 +1,7 @@
 // kernel/bspline.hpp
 #pragma once
 #include <algorithm>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -245,9 +246,33 @@ BSpline<Coef> from_bezier_pieces(const std::vector<Bernstein<Coef>>& pieces, int
   return BSpline<Coef>::make(degree, std::move(knots), std::move(ctrl));
 }
 
+/// The continuity of s at x: C^(degree - multiplicity) at a knot, C-infinity (INT_MAX)
+/// where x is no knot of s: a polynomial piece is smooth inside its span.
+template <typename Coef>
+int continuity_at(const BSpline<Coef>& s, const coef_scalar_t<Coef>& x) {
+  const int m = s.multiplicity(x);
+  return m == 0 ? std::numeric_limits<int>::max() : s.degree() - m;
+}
+
+/// Clamped knot vector of degree d on the breakpoints x for a spline built from s and r
+/// piece by piece (product, sum): each interior breakpoint gets multiplicity d - c, with c
+/// the lesser continuity of s and r there (at least -1: a break).
+template <typename A, typename B>
+std::vector<coef_scalar_t<A>> joined_knots(const std::vector<coef_scalar_t<A>>& x, int d,
+                                           const BSpline<A>& s, const BSpline<B>& r) {
+  std::vector<coef_scalar_t<A>> knots(static_cast<std::size_t>(d + 1), x.front());
+  for (std::size_t k = 1; k + 1 < x.size(); ++k) {
+    const int cont = std::min(continuity_at(s, x[k]), continuity_at(r, x[k]));
+    knots.insert(knots.end(), static_cast<std::size_t>(std::clamp(d - cont, 0, d + 1)), x[k]);
+  }
+  knots.insert(knots.end(), static_cast<std::size_t>(d + 1), x.back());
+  return knots;
+}
+
 /// Product s * r of two splines on the same interval (coefficient order kept). Degree
-/// p + q; at a breakpoint x the product is C^min(p - m_s(x), q - m_r(x)), so x gets
-/// multiplicity p + q - min(p - m_s, q - m_r). Built per span by (29), reassembled exactly.
+/// p + q; at a breakpoint x the product is as smooth as the less smooth factor there
+/// (continuity_at: a breakpoint one factor lacks does not lower it), so x gets multiplicity
+/// p + q - that continuity. Built per span by (29), reassembled exactly.
 template <typename A, typename B, typename Op = RingMul>
 auto product(const BSpline<A>& s, const BSpline<B>& r, Op op = {}) {
   using R = std::decay_t<decltype(op(s.ctrl()[0], r.ctrl()[0]))>;
@@ -262,13 +287,7 @@ auto product(const BSpline<A>& s, const BSpline<B>& r, Op op = {}) {
   std::vector<Bernstein<R>> pieces;
   for (std::size_t k = 0; k + 1 < x.size(); ++k)
     pieces.push_back(product(bezier_piece(s, x[k], x[k + 1]), bezier_piece(r, x[k], x[k + 1]), op));
-  std::vector<S> knots(static_cast<std::size_t>(d + 1), x.front());
-  for (std::size_t k = 1; k + 1 < x.size(); ++k) {
-    const int cont = std::min(p - s.multiplicity(x[k]), q - r.multiplicity(x[k]));
-    knots.insert(knots.end(), static_cast<std::size_t>(std::max(0, d - cont)), x[k]);
-  }
-  knots.insert(knots.end(), static_cast<std::size_t>(d + 1), x.back());
-  return from_bezier_pieces(pieces, d, std::move(knots));
+  return from_bezier_pieces(pieces, d, joined_knots(x, d, s, r));
 }
 
 /// Derivative ds/dt (degree p-1 on the inner knot vector).
@@ -329,13 +348,7 @@ auto combine(const BSpline<A>& a, const BSpline<B>& b, F f) {
     const auto pb = bezier_piece(b, x[k], x[k + 1]);
     pieces.push_back(f(elevate(pa, d - pa.degree()), elevate(pb, d - pb.degree())));
   }
-  std::vector<S> knots(static_cast<std::size_t>(d + 1), x.front());
-  for (std::size_t k = 1; k + 1 < x.size(); ++k) {
-    const int cont = std::min(a.degree() - a.multiplicity(x[k]), b.degree() - b.multiplicity(x[k]));
-    knots.insert(knots.end(), static_cast<std::size_t>(std::max(0, d - cont)), x[k]);
-  }
-  knots.insert(knots.end(), static_cast<std::size_t>(d + 1), x.back());
-  return from_bezier_pieces(pieces, d, std::move(knots));
+  return from_bezier_pieces(pieces, d, joined_knots(x, d, a, b));
 }
 
 /// Applies f to every pole.
