@@ -4,11 +4,20 @@
 #include <APIHeaderSection_MakeHeader.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_MakeSolid.hxx>
+#include <BRepBuilderAPI_MakeWire.hxx>
+#include <BRepBuilderAPI_Sewing.hxx>
 #include <BRepCheck_Analyzer.hxx>
+#include <BRepGProp.hxx>
+#include <BRepLib.hxx>
+#include <BRepTools_WireExplorer.hxx>
+#include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
+#include <GProp_GProps.hxx>
 #include <GeomConvert.hxx>
 #include <Geom_BSplineCurve.hxx>
 #include <Geom_BSplineSurface.hxx>
+#include <Geom_Plane.hxx>
 #include <Geom_TrimmedCurve.hxx>
 #include <IGESControl_Controller.hxx>
 #include <IGESControl_Reader.hxx>
@@ -33,19 +42,27 @@
 #include <TColStd_SequenceOfAsciiString.hxx>
 #include <TColgp_Array1OfPnt.hxx>
 #include <TColgp_Array2OfPnt.hxx>
+#include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
+#include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
 #include <TopoDS.hxx>
+#include <TopoDS_Compound.hxx>
 #include <TopoDS_Edge.hxx>
 #include <TopoDS_Face.hxx>
+#include <TopoDS_Shell.hxx>
+#include <TopoDS_Solid.hxx>
+#include <TopoDS_Wire.hxx>
 #include <UnitsMethods.hxx>
 #include <XSControl_WorkSession.hxx>
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "io/atomic_file.hpp"
+#include "io/units.hpp"
 #include "kernel/error.hpp"
 
 namespace qmotion::io {
@@ -59,15 +76,15 @@ struct UnitNames {
   double mm;
 };
 
-UnitNames unit_names(const std::string& u) {
-  if (u == "mm") return {"MM", "MM", 1.0};
-  if (u == "cm") return {"CM", "CM", 10.0};
-  if (u == "m") return {"M", "M", 1000.0};
-  if (u == "in") return {"INCH", "IN", 25.4};
-  if (u == "ft") return {"FT", "FT", 304.8};
-  if (u == "um") return {"UM", "UM", 0.001};
-  throw Error(Errc::invalid_input,
-              "unknown length unit '" + u + "' (expected mm, cm, m, in, ft, um)");
+UnitNames unit_names(const std::string& unit) {
+  const std::string u = canonical_unit(unit, "length unit");
+  const double mm = unit_in_mm(u);
+  if (u == "mm") return {"MM", "MM", mm};
+  if (u == "cm") return {"CM", "CM", mm};
+  if (u == "m") return {"M", "M", mm};
+  if (u == "in") return {"INCH", "IN", mm};
+  if (u == "ft") return {"FT", "FT", mm};
+  return {"UM", "UM", mm};
 }
 
 /// OpenCASCADE's translators report statistics through the default messenger, which
@@ -241,21 +258,22 @@ void write_step_shape(const std::string& path, const TopoDS_Shape& shape, const 
   out.commit();
 }
 
-void write_iges_geom(const std::string& path, const Handle(Standard_Transient) & geom,
-                     const ExportInfo& info) {
+/// Writes one geometry entity (`geom`), or a shape as IGES B-rep entities (`shape`).
+void write_iges_model(const std::string& path, const Handle(Standard_Transient) & geom,
+                      const TopoDS_Shape* shape, const ExportInfo& info) {
   quiet_occt();
   const UnitNames u = unit_names(info.units);
   IGESControl_Controller::Init();
   Interface_Static::SetCVal("xstep.cascade.unit", u.step);
   Interface_Static::SetCVal("write.iges.unit", u.iges);
   UnitsMethods::SetCasCadeLengthUnit(u.mm);
-  IGESControl_Writer writer(u.iges, 0);
+  IGESControl_Writer writer(u.iges, shape ? 1 : 0);  // 1: B-rep (shells, solids)
   {  // the model's own record of the unit the shape data is in (7.6): no rescaling
     IGESData_GlobalSection gs = writer.Model()->GlobalSection();
     gs.SetCascadeUnit(u.mm);
     writer.Model()->SetGlobalSection(gs);
   }
-  if (!writer.AddGeom(geom))
+  if (shape ? !writer.AddShape(*shape) : !writer.AddGeom(geom))
     throw Error(Errc::export_failed,
                 path + ": OpenCASCADE could not translate the geometry to IGES");
   writer.ComputeModel();
@@ -277,6 +295,150 @@ void write_iges_geom(const std::string& path, const Handle(Standard_Transient) &
     if (!f || !iw.Print(f)) throw Error(Errc::invalid_input, path + ": cannot write the IGES file");
   }
   out.commit();
+}
+
+/// The B-spline of curve on [first, last] (the curve itself when that is its whole range).
+Handle(Geom_BSplineCurve) whole_curve(const Handle(Geom_Curve) & curve, double first, double last) {
+  Handle(Geom_BSplineCurve) bc = Handle(Geom_BSplineCurve)::DownCast(curve);
+  if (bc.IsNull() || first != bc->FirstParameter() || last != bc->LastParameter())
+    bc = GeomConvert::CurveToBSplineCurve(new Geom_TrimmedCurve(curve, first, last));
+  return bc;
+}
+
+/// The profile edges of a shape as NURBS curves in order: the first wire's edges in wire
+/// order (reversed edges reversed), or, without a wire, every edge chained end to start
+/// (an edge is reversed where that joins it). Consecutive edges on one curve (a reader's
+/// split at C0 knots) are joined back into that curve.
+std::vector<sweep::NurbsCurve<double>> profile_edges(const TopoDS_Shape& shape) {
+  struct Run {
+    Handle(Geom_Curve) curve;
+    double first, last;
+    bool reversed;
+  };
+  std::vector<Run> runs;
+  auto add = [&runs](const TopoDS_Edge& edge) {
+    double f = 0, l = 0;
+    const Handle(Geom_Curve) c = BRep_Tool::Curve(edge, f, l);
+    if (c.IsNull()) return;
+    const bool rev = edge.Orientation() == TopAbs_REVERSED;
+    if (!runs.empty() && runs.back().curve == c && runs.back().reversed == rev &&
+        (rev ? l == runs.back().first : f == runs.back().last)) {
+      (rev ? runs.back().first : runs.back().last) = rev ? f : l;
+      return;
+    }
+    runs.push_back({c, f, l, rev});
+  };
+  TopExp_Explorer we(shape, TopAbs_WIRE);
+  if (we.More()) {
+    for (BRepTools_WireExplorer e(TopoDS::Wire(we.Current())); e.More(); e.Next()) add(e.Current());
+  } else {
+    for (TopExp_Explorer e(shape, TopAbs_EDGE); e.More(); e.Next()) add(TopoDS::Edge(e.Current()));
+  }
+  std::vector<sweep::NurbsCurve<double>> out;
+  for (const auto& r : runs) {
+    Handle(Geom_BSplineCurve) bc =
+        Handle(Geom_BSplineCurve)::DownCast(whole_curve(r.curve, r.first, r.last)->Copy());
+    if (r.reversed) bc->Reverse();
+    out.push_back(from_occt(bc));
+  }
+  if (we.More() || out.size() < 2) return out;
+  // Chain loose edges: each next edge starts (or, reversed, ends) where the chain ends.
+  std::vector<sweep::NurbsCurve<double>> chain{out.front()};
+  std::vector<bool> used(out.size(), false);
+  used[0] = true;
+  for (std::size_t n = 1; n < out.size(); ++n) {
+    const Eigen::Vector3d end = chain.back().points.back();
+    std::size_t best = out.size();
+    bool flip = false;
+    double gap = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < out.size(); ++k) {
+      if (used[k]) continue;
+      const double g0 = (out[k].points.front() - end).norm(),
+                   g1 = (out[k].points.back() - end).norm();
+      if (std::min(g0, g1) < gap) {
+        gap = std::min(g0, g1);
+        best = k;
+        flip = g1 < g0;
+      }
+    }
+    used[best] = true;
+    auto c = out[best];
+    if (flip) {  // reversed on the same parameter range: v -> first + last - v
+      std::reverse(c.points.begin(), c.points.end());
+      std::reverse(c.weights.begin(), c.weights.end());
+      const double s = c.knots.front() + c.knots.back();
+      std::reverse(c.knots.begin(), c.knots.end());
+      for (auto& k : c.knots) k = s - k;
+    }
+    chain.push_back(std::move(c));
+  }
+  return chain;
+}
+
+/// A wire through the curves in order (each an edge on its whole curve).
+TopoDS_Wire make_wire(const std::vector<sweep::NurbsCurve<double>>& curves, const std::string& path,
+                      const std::string& what) {
+  BRepBuilderAPI_MakeWire w;
+  for (const auto& c : curves) {
+    w.Add(BRepBuilderAPI_MakeEdge(make_curve(c)).Edge());
+    if (!w.IsDone())
+      throw Error(Errc::export_failed,
+                  path + ": OpenCASCADE could not join the " + what + " into a wire");
+  }
+  return w.Wire();
+}
+
+double shell_size(const sweep::NurbsShell<double>& s) {
+  Eigen::Vector3d lo = s.faces.front().points.front().front(), hi = lo;
+  for (const auto& f : s.faces)
+    for (const auto& row : f.points)
+      for (const auto& p : row) {
+        lo = lo.cwiseMin(p);
+        hi = hi.cwiseMax(p);
+      }
+  return (hi - lo).norm();
+}
+
+/// The faces sewn into one shell, or with caps into one closed, outward-oriented solid.
+TopoDS_Shape make_shell(const sweep::NurbsShell<double>& s, const std::string& path) {
+  if (s.faces.empty()) throw Error(Errc::internal, "a shell without faces");
+  if (s.faces.size() == 1 && s.cap_start.empty()) {
+    return BRepBuilderAPI_MakeFace(make_surface(s.faces.front()), 1e-9).Face();
+  }
+  // Neighbouring faces share their boundary poles exactly; the tolerance only absorbs
+  // OpenCASCADE's own rounding of the boundary curves.
+  BRepBuilderAPI_Sewing sewing(std::max(1e-7, 1e-9 * shell_size(s)));
+  for (const auto& f : s.faces) sewing.Add(BRepBuilderAPI_MakeFace(make_surface(f), 1e-9).Face());
+  if (!s.cap_start.empty()) {
+    for (const auto* cap : {&s.cap_start, &s.cap_end}) {
+      BRepBuilderAPI_MakeFace face(make_wire(*cap, path, "cap's boundary curves"),
+                                   Standard_True /*only a plane*/);
+      if (!face.IsDone())
+        throw Error(Errc::export_failed,
+                    path + ": OpenCASCADE found no plane through a cap's boundary");
+      sewing.Add(face.Face());
+    }
+  }
+  sewing.Perform();
+  const TopoDS_Shape sewn = sewing.SewedShape();
+  if (sewn.IsNull())
+    throw Error(Errc::export_failed, path + ": OpenCASCADE could not sew the faces");
+  if (s.cap_start.empty()) return sewn;
+  TopExp_Explorer e(sewn, TopAbs_SHELL);
+  if (!e.More()) throw Error(Errc::export_failed, path + ": the sewn faces form no shell");
+  const TopoDS_Shell shell = TopoDS::Shell(e.Current());
+  e.Next();
+  if (e.More() || sewing.NbFreeEdges() > 0)
+    throw Error(Errc::export_failed, path + ": the swept faces and caps do not close (" +
+                                         std::to_string(sewing.NbFreeEdges()) +
+                                         " free edges after sewing)");
+  BRepBuilderAPI_MakeSolid solid(shell);
+  if (!solid.IsDone()) throw Error(Errc::export_failed, path + ": OpenCASCADE made no solid");
+  TopoDS_Solid result = solid.Solid();
+  BRepLib::OrientClosedSolid(result);
+  if (!BRepCheck_Analyzer(result).IsValid())
+    throw Error(Errc::export_failed, path + ": OpenCASCADE finds the swept solid invalid");
+  return result;
 }
 
 template <typename F>
@@ -329,12 +491,34 @@ void write_step(const std::string& path, const sweep::NurbsCurve<double>& c,
 
 void write_iges(const std::string& path, const sweep::NurbsSurface<double>& s,
                 const ExportInfo& info) {
-  guarded(path, [&] { write_iges_geom(path, make_surface(s), info); });
+  guarded(path, [&] { write_iges_model(path, make_surface(s), nullptr, info); });
 }
 
 void write_iges(const std::string& path, const sweep::NurbsCurve<double>& c,
                 const ExportInfo& info) {
-  guarded(path, [&] { write_iges_geom(path, make_curve(c), info); });
+  guarded(path, [&] { write_iges_model(path, make_curve(c), nullptr, info); });
+}
+
+void write_step(const std::string& path, const sweep::NurbsShell<double>& s,
+                const ExportInfo& info) {
+  guarded(path, [&] { write_step_shape(path, make_shell(s, path), info); });
+}
+
+void write_iges(const std::string& path, const sweep::NurbsShell<double>& s,
+                const ExportInfo& info) {
+  guarded(path, [&] {
+    if (s.faces.size() == 1 && s.cap_start.empty()) {
+      write_iges_model(path, make_surface(s.faces.front()), nullptr, info);
+      return;
+    }
+    const TopoDS_Shape shape = make_shell(s, path);
+    write_iges_model(path, Handle(Standard_Transient)(), &shape, info);
+  });
+}
+
+void write_step(const std::string& path, const std::vector<sweep::NurbsCurve<double>>& wire,
+                const ExportInfo& info) {
+  guarded(path, [&] { write_step_shape(path, make_wire(wire, path, "curves"), info); });
 }
 
 CadGeometry read_cad(const std::string& path, bool want_surface, const std::string& units) {
@@ -378,18 +562,48 @@ CadGeometry read_cad(const std::string& path, bool want_surface, const std::stri
     g.valid = BRepCheck_Analyzer(shape).IsValid();
     for (TopExp_Explorer e(shape, TopAbs_FACE); e.More(); e.Next()) ++g.faces;
     for (TopExp_Explorer e(shape, TopAbs_EDGE); e.More(); e.Next()) ++g.edges;
+    for (TopExp_Explorer e(shape, TopAbs_SHELL); e.More(); e.Next()) ++g.shells;
+    for (TopExp_Explorer e(shape, TopAbs_SOLID); e.More(); e.Next()) ++g.solids;
+    {  // closed: every edge (but degenerate ones) bounds exactly two faces
+      TopTools_IndexedDataMapOfShapeListOfShape edge_faces;
+      TopExp::MapShapesAndAncestors(shape, TopAbs_EDGE, TopAbs_FACE, edge_faces);
+      g.closed = edge_faces.Extent() > 0;
+      for (int i = 1; i <= edge_faces.Extent(); ++i)
+        if (!BRep_Tool::Degenerated(TopoDS::Edge(edge_faces.FindKey(i))) &&
+            edge_faces.FindFromIndex(i).Extent() != 2)
+          g.closed = false;
+    }
+    if (g.solids > 0) {
+      GProp_GProps props;
+      BRepGProp::VolumeProperties(shape, props, 1e-9, Standard_True);
+      g.volume = props.Mass();
+    }
     if (want_surface) {
-      TopExp_Explorer e(shape, TopAbs_FACE);
-      if (!e.More()) throw Error(Errc::invalid_input, path + ": the file holds no surface (face)");
-      const Handle(Geom_Surface) surf = BRep_Tool::Surface(TopoDS::Face(e.Current()));
-      Handle(Geom_BSplineSurface) bs = Handle(Geom_BSplineSurface)::DownCast(surf);
-      if (bs.IsNull()) bs = GeomConvert::SurfaceToBSplineSurface(surf);
+      for (TopExp_Explorer e(shape, TopAbs_FACE); e.More(); e.Next()) {
+        const Handle(Geom_Surface) surf = BRep_Tool::Surface(TopoDS::Face(e.Current()));
+        if (surf.IsNull()) throw Error(Errc::invalid_input, path + ": a face has no surface");
+        CadFace face;
+        if (!Handle(Geom_Plane)::DownCast(surf).IsNull()) {
+          face.is_plane = true;
+          g.face_list.push_back(std::move(face));
+          continue;
+        }
+        Handle(Geom_BSplineSurface) bs = Handle(Geom_BSplineSurface)::DownCast(surf);
+        if (bs.IsNull()) bs = GeomConvert::SurfaceToBSplineSurface(surf);
+        face.surface = from_occt(bs);
+        face.value = [bs](double u, double v) {
+          const gp_Pnt p = bs->Value(u, v);
+          return Eigen::Vector3d(p.X(), p.Y(), p.Z());
+        };
+        g.face_list.push_back(std::move(face));
+      }
+      const auto first = std::find_if(g.face_list.begin(), g.face_list.end(),
+                                      [](const CadFace& f) { return !f.is_plane; });
+      if (first == g.face_list.end())
+        throw Error(Errc::invalid_input, path + ": the file holds no surface (face)");
       g.is_surface = true;
-      g.surface = from_occt(bs);
-      g.value = [bs](double u, double v) {
-        const gp_Pnt p = bs->Value(u, v);
-        return Eigen::Vector3d(p.X(), p.Y(), p.Z());
-      };
+      g.surface = first->surface;
+      g.value = first->value;
     } else {
       TopExp_Explorer e(shape, TopAbs_EDGE);
       if (!e.More()) throw Error(Errc::invalid_input, path + ": the file holds no curve (edge)");
@@ -405,14 +619,14 @@ CadGeometry read_cad(const std::string& path, bool want_surface, const std::stri
         first = std::min(first, f2);
         last = std::max(last, l2);
       }
-      Handle(Geom_BSplineCurve) bc = Handle(Geom_BSplineCurve)::DownCast(curve);
-      if (bc.IsNull() || first != bc->FirstParameter() || last != bc->LastParameter())
-        bc = GeomConvert::CurveToBSplineCurve(new Geom_TrimmedCurve(curve, first, last));
+      Handle(Geom_BSplineCurve) bc = whole_curve(curve, first, last);
       g.curve = from_occt(bc);
       g.value = [bc](double t, double) {
         const gp_Pnt p = bc->Value(t);
         return Eigen::Vector3d(p.X(), p.Y(), p.Z());
       };
+      g.wire = profile_edges(shape);
+      if (g.wire.empty()) g.wire.push_back(g.curve);
     }
   } catch (const Standard_Failure& e) {
     throw Error(Errc::invalid_input,

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "sweep/nurbs.hpp"
+#include "sweep/shell.hpp"
 
 namespace qmotion::io {
 
@@ -36,23 +37,48 @@ void write_iges(const std::string& path, const sweep::NurbsSurface<double>& s,
 void write_iges(const std::string& path, const sweep::NurbsCurve<double>& c,
                 const ExportInfo& info);
 
+/// A shell of faces (split at C0 knots, several profile edges) sewn along their shared
+/// edges; with `closed` and caps, the planar caps are added and the whole written as one
+/// closed solid (STEP MANIFOLD_SOLID_BREP; IGES 5.3 B-rep entities 186/514/510). Throws
+/// Errc::export_failed when OpenCASCADE cannot sew or close it.
+void write_step(const std::string& path, const sweep::NurbsShell<double>& s,
+                const ExportInfo& info);
+void write_iges(const std::string& path, const sweep::NurbsShell<double>& s,
+                const ExportInfo& info);
+/// A wire: the curves in order, joined end to start (a profile of several edges).
+void write_step(const std::string& path, const std::vector<sweep::NurbsCurve<double>>& wire,
+                const ExportInfo& info);
+
+/// One face read back: its surface as NURBS, or a plane (a solid's cap).
+struct CadFace {
+  bool is_plane = false;
+  sweep::NurbsSurface<double> surface;  ///< (not is_plane)
+  /// Evaluation by OpenCASCADE itself (Geom_BSplineSurface::Value).
+  std::function<Eigen::Vector3d(double, double)> value;
+};
+
 /// Geometry read back from a STEP or IGES file through OpenCASCADE.
 struct CadGeometry {
   bool is_surface = false;
   sweep::NurbsSurface<double> surface;  ///< first face's surface as NURBS (is_surface)
   sweep::NurbsCurve<double> curve;      ///< first edge's curve as NURBS (otherwise)
+  /// The first wire's edges in order (each whole curve; otherwise the first edge's curve).
+  std::vector<sweep::NurbsCurve<double>> wire;
+  std::vector<CadFace> face_list;  ///< every face (is_surface)
   /// Evaluation by OpenCASCADE itself (Geom_BSplineSurface/Curve::Value): (u, v) or (t, -).
   std::function<Eigen::Vector3d(double, double)> value;
-  int faces = 0, edges = 0;
+  int faces = 0, edges = 0, solids = 0, shells = 0;
   bool valid = false;      ///< BRepCheck_Analyzer on the whole shape
+  bool closed = false;     ///< every edge of the shape bounds two faces (a closed shell)
+  double volume = 0;       ///< of the solids, by BRepGProp's adaptive integration (1e-9)
   std::string file_units;  ///< the length unit the file declares (lower case, e.g. "mm")
 };
 
 /// Reads a STEP (.step/.stp) or IGES (.igs/.iges) file, converting lengths to `units`.
-/// With `want_surface`, the first face's surface; else the first edge's curve. Curves and
-/// surfaces of other types are converted to NURBS (exactly for lines, conics and B-splines).
-/// Throws Errc::invalid_input naming the file when it cannot be read or holds no such
-/// geometry.
+/// With `want_surface`, every face (and the first face's surface); else the first wire's
+/// edges and the first edge's curve. Curves and surfaces of other types are converted to
+/// NURBS (exactly for lines, conics and B-splines). Throws Errc::invalid_input naming the
+/// file when it cannot be read or holds no such geometry.
 CadGeometry read_cad(const std::string& path, bool want_surface, const std::string& units = "mm");
 
 /// Full clamped knot vector <-> distinct knots and multiplicities (the OpenCASCADE/STEP/

@@ -2,6 +2,7 @@
 #pragma once
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "kernel/error.hpp"
 #include "sweep/nurbs.hpp"
@@ -72,6 +73,51 @@ inline NurbsCurve<double> arc(double r, double a0_deg, double a1_deg) {
     c.weights.push_back(1.0);
   }
   return c;
+}
+
+/// A profile of the moving space: one or more edges in order, each a NURBS curve with its
+/// own parameter (SPEC §5). `closed` when the last edge ends where the first starts.
+template <typename Scalar>
+struct Profile {
+  std::vector<NurbsCurve<Scalar>> edges;
+  bool closed = false;
+};
+
+/// The profile of one curve (closed when its end points coincide).
+template <typename Scalar>
+Profile<Scalar> single_edge(NurbsCurve<Scalar> c) {
+  const bool closed = c.points.front() == c.points.back();
+  return Profile<Scalar>{{std::move(c)}, closed};
+}
+
+/// The polyline through the points, one segment edge (v in [0, 1]) per pair; closed when
+/// the last point equals the first. Throws Errc::invalid_input on fewer than two points or
+/// a repeated consecutive point.
+template <typename Scalar>
+Profile<Scalar> polyline(const std::vector<Eigen::Matrix<Scalar, 3, 1>>& pts) {
+  if (pts.size() < 2) throw Error(Errc::invalid_input, "a polyline needs at least two points");
+  Profile<Scalar> p;
+  for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
+    if (pts[i] == pts[i + 1])
+      throw Error(Errc::invalid_input, "polyline points " + std::to_string(i + 1) + " and " +
+                                           std::to_string(i + 2) + " coincide");
+    p.edges.push_back(segment(pts[i], pts[i + 1]));
+  }
+  p.closed = pts.size() > 3 && pts.front() == pts.back();
+  return p;
+}
+
+/// The closed w x h rectangle centred at the origin in the x-y plane, counter-clockwise
+/// about +z from (w/2, -h/2): four segment edges.
+template <typename Scalar>
+Profile<Scalar> rect(const Scalar& w, const Scalar& h) {
+  if (!(w > Scalar(0)) || !(h > Scalar(0)))
+    throw Error(Errc::invalid_input, "rectangle sides must be positive");
+  using V = Eigen::Matrix<Scalar, 3, 1>;
+  const Scalar x = Scalar(w / Scalar(2)), y = Scalar(h / Scalar(2));
+  return polyline<Scalar>({V(x, Scalar(-y), Scalar(0)), V(x, y, Scalar(0)),
+                           V(Scalar(-x), y, Scalar(0)), V(Scalar(-x), Scalar(-y), Scalar(0)),
+                           V(x, Scalar(-y), Scalar(0))});
 }
 
 }  // namespace qmotion::sweep

@@ -553,8 +553,8 @@ int cmd_demo(const std::string& dir) {
     }
     GeometryOptions go;
     go.output = (tmp / ("surface_parabola" + ext)).string();
-    export_surface(lm, parabola, "a parabola", go);
-    json c = check_geometry(go.output, lm, parabola, std::nullopt);
+    export_surface(lm, sweep::single_edge(parabola), "a parabola", go);
+    json c = check_geometry(go.output, lm, sweep::single_edge(parabola), std::nullopt);
     c["file"] = "surface_parabola" + ext;
     report.push_back(c);
   }
@@ -653,7 +653,9 @@ int run(int argc, char** argv) {
   traj->add_option(
       "--tol", traj_opt.tol,
       "Approximation tolerance in length units (default 1e-6 of the bounding-box diagonal)");
-  traj->add_option("--units", traj_opt.units, "Declared length unit (default: the motion's)");
+  traj->add_option("--units", traj_opt.units,
+                   "Convert the numbers from the motion's unit into U and declare U: mm, cm, m, "
+                   "um, in, ft (default: the motion's)");
 
   auto* swp = app.add_subcommand(
       "sweep",
@@ -662,7 +664,8 @@ int run(int argc, char** argv) {
   GeometryOptions swp_opt;
   swp->add_option("MOTION", swp_motion, "Motion JSON file")->required();
   swp->add_option("--profile", swp_profile,
-                  "Profile: nurbs_curve .json, .step/.igs (first edge), segment:x0,y0,z0:x1,y1,z1, "
+                  "Profile: nurbs_curve .json (or an array of them), .step/.igs (the first "
+                  "wire's edges), segment:x0,y0,z0:x1,y1,z1, polyline:x,y,z:x,y,z:..., rect:w,h, "
                   "circle:r, arc:r,a0,a1")
       ->required();
   swp->add_option("-o,--output", swp_opt.output, "Output .json, .step/.stp, .igs/.iges or .stl")
@@ -672,7 +675,14 @@ int run(int argc, char** argv) {
   swp->add_option(
       "--tol", swp_opt.tol,
       "Approximation tolerance in length units (default 1e-6 of the bounding-box diagonal)");
-  swp->add_option("--units", swp_opt.units, "Declared length unit (default: the motion's)");
+  swp->add_option("--units", swp_opt.units,
+                  "Convert the numbers from the motion's unit into U and declare U: mm, cm, m, "
+                  "um, in, ft (default: the motion's)");
+  swp->add_flag("--single-face", swp_opt.single_face,
+                "STEP/IGES: one face per profile edge instead of a shell of C1 faces split at the "
+                "C0 knots");
+  swp->add_flag("--solid", swp_opt.solid,
+                "Closed planar profile: add planar caps at both ends and write one closed solid");
 
   auto* chk = app.add_subcommand("check",
                                  "Measure the deviation of a written NURBS (JSON, or STEP/IGES "
@@ -712,8 +722,9 @@ int run(int argc, char** argv) {
   if (*traj) {
     const auto r =
         export_trajectory(load_motion(traj_motion), parse_point(traj_point, "--point"), traj_opt);
-    std::cerr << "qmotion: wrote " << r.path << " (degree " << r.degree_u << ", "
-              << r.inserted_knots << " knots inserted for positive weights"
+    std::cerr << "qmotion: wrote " << r.path << " (degree " << r.degree_u << ", C" << r.continuity_u
+              << ", " << r.poles << " poles, " << r.units << ", " << r.inserted_knots
+              << " knots inserted for positive weights"
               << (r.approx_deviation ? ", approximation with measured deviation " +
                                            std::to_string(*r.approx_deviation)
                                      : std::string(""))
@@ -725,6 +736,9 @@ int run(int argc, char** argv) {
     const auto profile = io::read_profile(swp_profile, lm.file.units);
     const auto r = export_surface(lm, profile, swp_profile, swp_opt);
     std::cerr << "qmotion: wrote " << r.path << " (degrees " << r.degree_u << " x " << r.degree_v
+              << ", C" << r.continuity_u << " x C" << r.continuity_v << ", " << r.faces
+              << (r.faces == 1 ? " face, " : " faces, ") << r.poles << " poles, " << r.units
+              << (r.volume ? ", solid of volume " + std::to_string(*r.volume) : std::string(""))
               << (r.approx_deviation ? ", approximation with measured deviation " +
                                            std::to_string(*r.approx_deviation)
                                      : std::string(""))
@@ -735,7 +749,7 @@ int run(int argc, char** argv) {
     if (chk_profile.empty() == chk_point.empty())
       throw Error(Errc::invalid_input, "check: give exactly one of --profile and --point");
     const LoadedMotion lm = load_motion(chk_motion);
-    std::optional<sweep::NurbsCurve<double>> profile;
+    std::optional<sweep::Profile<double>> profile;
     std::optional<Eigen::Vector3d> point;
     if (!chk_profile.empty()) profile = io::read_profile(chk_profile, lm.file.units);
     if (!chk_point.empty()) point = parse_point(chk_point, "--point");

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <random>
 #include <sstream>
 
@@ -12,8 +13,11 @@
 #include "io/json_number.hpp"
 #include "io/nurbs_json.hpp"
 #include "io/occt.hpp"
+#include "io/units.hpp"
 #include "kernel/error.hpp"
 #include "sweep/approximate.hpp"
+#include "sweep/shell.hpp"
+#include "sweep/solid.hpp"
 #include "sweep/surface.hpp"
 
 namespace qmotion::cli {
@@ -102,14 +106,85 @@ io::ExportInfo export_info(const LoadedMotion& lm, const GeometryOptions& opt,
 
 double min_weight(const std::vector<double>& w) { return *std::min_element(w.begin(), w.end()); }
 
-void write_stl(const std::string& path, const sweep::NurbsSurface<double>& s, int n) {
-  const double u0 = s.knots_u.front(), u1 = s.knots_u.back(), v0 = s.knots_v.front(),
-               v1 = s.knots_v.back();
-  std::vector<std::vector<Eigen::Vector3d>> g(static_cast<std::size_t>(n + 1));
-  for (int i = 0; i <= n; ++i)
-    for (int j = 0; j <= n; ++j)
-      g[static_cast<std::size_t>(i)].push_back(
-          sweep::evaluate(s, u0 + (u1 - u0) * i / n, v0 + (v1 - v0) * j / n));
+/// Scales Cartesian poles into another unit (weights and knots unchanged).
+void scale_points(sweep::NurbsCurve<double>& c, double k) {
+  if (k != 1.0)
+    for (auto& p : c.points) p *= k;
+}
+void scale_points(sweep::NurbsSurface<double>& s, double k) {
+  if (k != 1.0)
+    for (auto& row : s.points)
+      for (auto& p : row) p *= k;
+}
+
+/// The declared unit and the factor from the motion's unit into it (--units converts).
+void resolve_units(const LoadedMotion& lm, const GeometryOptions& opt, ExportResult& r) {
+  r.units = opt.units.empty() ? lm.file.units : io::canonical_unit(opt.units, "--units");
+  r.unit_factor = io::unit_factor(lm.file.units, r.units);
+}
+
+/// The JSON record of an approximation (tolerance and deviation in the declared unit).
+json approximation_json(const GeometryOptions& opt, const ExportResult& r, double tol) {
+  return json{{"max_degree", opt.max_degree},
+              {"tolerance", tol * r.unit_factor},
+              {"measured_deviation", *r.approx_deviation},
+              {"max_deviation", *r.approx_deviation},
+              {"continuity", r.continuity_u}};
+}
+
+/// The exact (or --max-degree approximated) surface of one profile edge, in the motion's
+/// unit; `tol_used` receives the approximation tolerance.
+sweep::NurbsSurface<double> edge_surface(const LoadedMotion& lm,
+                                         const sweep::NurbsCurve<double>& profile,
+                                         const GeometryOptions& opt, Format f, ExportResult& r,
+                                         double& tol_used) {
+  if (opt.max_degree > 0) {
+    std::vector<sweep::Vec4<double>> X;
+    for (std::size_t j = 0; j < profile.points.size(); ++j)
+      X.emplace_back(profile.weights[j], profile.weights[j] * profile.points[j](0),
+                     profile.weights[j] * profile.points[j](1),
+                     profile.weights[j] * profile.points[j](2));
+    const auto cols = sweep::trajectories(lm.motion, lm.factors, X);
+    if (cols.front().degree() > opt.max_degree) {
+      double diag = 0;
+      for (const auto& c : cols) diag = std::max(diag, diagonal(curve_samples(c, 100)));
+      const double tol = opt.tol > 0 ? opt.tol : 1e-6 * diag;
+      tol_used = tol;
+      const auto approx = sweep::approximate_homogeneous(cols, opt.max_degree, tol);
+      sweep::HomogeneousSurface<double> hs{approx.curves.front().degree(),
+                                           profile.degree,
+                                           approx.curves.front().knots(),
+                                           profile.knots,
+                                           {}};
+      hs.poles.assign(approx.curves.front().ctrl().size(),
+                      std::vector<sweep::Vec4<double>>(cols.size()));
+      for (std::size_t j = 0; j < cols.size(); ++j)
+        for (std::size_t i = 0; i < hs.poles.size(); ++i)
+          hs.poles[i][j] = approx.curves[j].ctrl()[i];
+      const auto s = sweep::to_nurbs(hs);
+      // The surface's own deviation, measured.
+      double dev = 0;
+      for (int i = 0; i <= 40; ++i)
+        for (int j = 0; j <= 40; ++j) {
+          const double u = lm.motion.a() + (lm.motion.b() - lm.motion.a()) * i / 40.0;
+          const double v =
+              profile.knots.front() + (profile.knots.back() - profile.knots.front()) * j / 40.0;
+          const auto exact =
+              kernel::apply_point(kernel::evaluate(lm.motion, u), sweep::evaluate(profile, v));
+          dev = std::max(dev, (sweep::evaluate(s, u, v) - exact).norm());
+        }
+      r.approx_deviation = std::max(r.approx_deviation.value_or(0.0), dev);
+      return s;
+    }
+  }
+  const auto hs = sweep::kinematic_surface(lm.motion, lm.factors, profile);
+  check_degree(hs.degree_u, "the surface (along the motion)", f, opt);
+  return sweep::to_nurbs(hs);
+}
+
+/// A 64 x 64 lattice of triangles per face, ASCII STL.
+void write_stl(const std::string& path, const std::vector<sweep::NurbsSurface<double>>& faces,
+               int n) {
   std::ostringstream os;
   os.precision(17);
   os << "solid qmotion\n";
@@ -121,45 +196,22 @@ void write_stl(const std::string& path, const sweep::NurbsSurface<double>& s, in
       os << "   vertex " << p->x() << " " << p->y() << " " << p->z() << "\n";
     os << "  endloop\n endfacet\n";
   };
-  for (std::size_t i = 0; i < static_cast<std::size_t>(n); ++i)
-    for (std::size_t j = 0; j < static_cast<std::size_t>(n); ++j) {
-      tri(g[i][j], g[i + 1][j], g[i + 1][j + 1]);
-      tri(g[i][j], g[i + 1][j + 1], g[i][j + 1]);
-    }
+  for (const auto& s : faces) {
+    const double u0 = s.knots_u.front(), u1 = s.knots_u.back(), v0 = s.knots_v.front(),
+                 v1 = s.knots_v.back();
+    std::vector<std::vector<Eigen::Vector3d>> g(static_cast<std::size_t>(n + 1));
+    for (int i = 0; i <= n; ++i)
+      for (int j = 0; j <= n; ++j)
+        g[static_cast<std::size_t>(i)].push_back(
+            sweep::evaluate(s, u0 + (u1 - u0) * i / n, v0 + (v1 - v0) * j / n));
+    for (std::size_t i = 0; i < static_cast<std::size_t>(n); ++i)
+      for (std::size_t j = 0; j < static_cast<std::size_t>(n); ++j) {
+        tri(g[i][j], g[i + 1][j], g[i + 1][j + 1]);
+        tri(g[i][j], g[i + 1][j + 1], g[i][j + 1]);
+      }
+  }
   os << "endsolid qmotion\n";
   io::write_file_atomic(path, os.str());
-}
-
-/// Writes a curve or surface in the chosen format (JSON records units and any approximation).
-template <typename Geometry>
-void write_geometry(Format f, const GeometryOptions& opt, const Geometry& g,
-                    const io::ExportInfo& info, const ExportResult& r) {
-  constexpr bool is_surface = std::is_same_v<Geometry, sweep::NurbsSurface<double>>;
-  switch (f) {
-    case Format::json: {
-      json doc;
-      if constexpr (is_surface) {
-        doc = io::surface_to_json(g);
-      } else {
-        doc = io::curve_to_json(g);
-      }
-      doc["units"] = info.units;
-      if (r.approx_deviation)
-        doc["approximation"] = {{"max_degree", opt.max_degree},
-                                {"max_deviation", *r.approx_deviation}};
-      io::write_file_atomic(opt.output, doc.dump(1) + "\n");
-      break;
-    }
-    case Format::step:
-      io::write_step(opt.output, g, info);
-      break;
-    case Format::iges:
-      io::write_iges(opt.output, g, info);
-      break;
-    case Format::stl:
-      if constexpr (is_surface) write_stl(opt.output, g, 64);
-      break;
-  }
 }
 
 }  // namespace
@@ -186,177 +238,334 @@ ExportResult export_trajectory(const LoadedMotion& lm, const Eigen::Vector3d& po
                                const GeometryOptions& opt) {
   const Format f = output_format(opt.output, false);
   refuse_poles(lm);
+  ExportResult r;
+  r.path = opt.output;
+  resolve_units(lm, opt, r);
   const auto h0 = lm.factors
                       ? sweep::trajectory_from_factors(
                             *lm.factors, sweep::Vec4<double>(1, point(0), point(1), point(2)))
                       : sweep::trajectory_from_motion(
                             lm.motion, sweep::Vec4<double>(1, point(0), point(1), point(2)));
-  ExportResult r;
-  r.path = opt.output;
   auto h = h0;
+  double tol = 0;
   if (opt.max_degree > 0 && h.degree() > opt.max_degree) {
-    const double tol =
-        opt.tol > 0 ? opt.tol : 1e-6 * std::max(diagonal(curve_samples(h0, 200)), 1e-300);
+    tol = opt.tol > 0 ? opt.tol : 1e-6 * std::max(diagonal(curve_samples(h0, 200)), 1e-300);
     const auto approx = sweep::approximate_homogeneous({h0}, opt.max_degree, tol);
     h = approx.curves.front();
-    r.approx_deviation = approx.max_deviation;
+    r.approx_deviation = approx.max_deviation * r.unit_factor;
   } else {
     check_degree(h.degree(), "the trajectory", f, opt);
     const auto extra = sweep::knots_for_positive_weights(h);
     r.inserted_knots = static_cast<int>(extra.size());
     h = sweep::insert_knots(h, extra);
   }
-  const sweep::NurbsCurve<double> c = sweep::to_nurbs(h);
+  sweep::NurbsCurve<double> c = sweep::to_nurbs(h);
+  scale_points(c, r.unit_factor);
   r.degree_u = c.degree;
+  r.continuity_u = sweep::min_continuity(c.knots, c.degree);
+  r.poles = static_cast<int>(c.points.size());
   r.min_weight = min_weight(c.weights);
-  const auto info = export_info(
+  auto info = export_info(
       lm, opt, "trajectory of (" + fmt(point(0)) + "," + fmt(point(1)) + "," + fmt(point(2)) + ")");
-  write_geometry(f, opt, c, info, r);
+  info.units = r.units;
+  switch (f) {
+    case Format::json: {
+      json doc = io::curve_to_json(c);
+      doc["units"] = r.units;
+      doc["continuity"] = r.continuity_u;
+      if (r.approx_deviation) doc["approximation"] = approximation_json(opt, r, tol);
+      io::write_file_atomic(opt.output, doc.dump(1) + "\n");
+      break;
+    }
+    case Format::step:
+      io::write_step(opt.output, c, info);
+      break;
+    case Format::iges:
+      io::write_iges(opt.output, c, info);
+      break;
+    case Format::stl:
+      break;
+  }
   return r;
 }
 
-ExportResult export_surface(const LoadedMotion& lm, const sweep::NurbsCurve<double>& profile,
+ExportResult export_surface(const LoadedMotion& lm, const sweep::Profile<double>& profile,
                             const std::string& profile_name, const GeometryOptions& opt) {
   const Format f = output_format(opt.output, true);
   refuse_poles(lm);
   ExportResult r;
   r.path = opt.output;
+  resolve_units(lm, opt, r);
   if (f == Format::step || f == Format::iges)
-    check_degree(profile.degree, "the profile", f, GeometryOptions{});
-  sweep::NurbsSurface<double> s;
-  if (opt.max_degree > 0) {
-    std::vector<sweep::Vec4<double>> X;
-    for (std::size_t j = 0; j < profile.points.size(); ++j)
-      X.emplace_back(profile.weights[j], profile.weights[j] * profile.points[j](0),
-                     profile.weights[j] * profile.points[j](1),
-                     profile.weights[j] * profile.points[j](2));
-    const auto cols = sweep::trajectories(lm.motion, lm.factors, X);
-    if (cols.front().degree() > opt.max_degree) {
-      double diag = 0;
-      for (const auto& c : cols) diag = std::max(diag, diagonal(curve_samples(c, 100)));
-      const double tol = opt.tol > 0 ? opt.tol : 1e-6 * diag;
-      const auto approx = sweep::approximate_homogeneous(cols, opt.max_degree, tol);
-      sweep::HomogeneousSurface<double> hs{approx.curves.front().degree(),
-                                           profile.degree,
-                                           approx.curves.front().knots(),
-                                           profile.knots,
-                                           {}};
-      hs.poles.assign(approx.curves.front().ctrl().size(),
-                      std::vector<sweep::Vec4<double>>(cols.size()));
-      for (std::size_t j = 0; j < cols.size(); ++j)
-        for (std::size_t i = 0; i < hs.poles.size(); ++i)
-          hs.poles[i][j] = approx.curves[j].ctrl()[i];
-      s = sweep::to_nurbs(hs);
-      // The surface's own deviation, measured.
-      double dev = 0;
-      for (int i = 0; i <= 40; ++i)
-        for (int j = 0; j <= 40; ++j) {
-          const double u = lm.motion.a() + (lm.motion.b() - lm.motion.a()) * i / 40.0;
-          const double v =
-              profile.knots.front() + (profile.knots.back() - profile.knots.front()) * j / 40.0;
-          const auto exact =
-              kernel::apply_point(kernel::evaluate(lm.motion, u), sweep::evaluate(profile, v));
-          dev = std::max(dev, (sweep::evaluate(s, u, v) - exact).norm());
-        }
-      r.approx_deviation = dev;
+    for (const auto& e : profile.edges) check_degree(e.degree, "the profile", f, GeometryOptions{});
+  if (opt.solid) {
+    if (!profile.closed)
+      throw Error(Errc::invalid_input, "--solid: the profile " + profile_name +
+                                           " is open (its last edge does not end where the "
+                                           "first starts); a solid needs a closed planar profile");
+    const sweep::PlanarRegion region = sweep::planar_region(profile);
+    const auto back = sweep::find_backsweep(lm.motion, lm.factors, profile, region);
+    if (back.t) {
+      std::ostringstream os;
+      os.precision(12);
+      os << "--solid: the profile's region sweeps back over itself near t = " << *back.t
+         << " (a point of the region has zero or reversed normal velocity there), so the capped "
+            "sweep is not a solid; sweep a shorter interval or drop --solid for the open shell";
+      throw Error(Errc::numerical_failure, os.str());
+    }
+    r.volume = sweep::swept_volume(lm.motion, region) * std::pow(r.unit_factor, 3);
+  }
+  std::vector<sweep::NurbsSurface<double>> surfaces;
+  double tol = 0;
+  for (const auto& e : profile.edges) {
+    surfaces.push_back(edge_surface(lm, e, opt, f, r, tol));
+    scale_points(surfaces.back(), r.unit_factor);
+  }
+  if (r.approx_deviation) *r.approx_deviation *= r.unit_factor;
+  sweep::NurbsShell<double> shell;
+  for (const auto& s : surfaces) {
+    if (opt.single_face) {
+      shell.faces.push_back(s);
+    } else {
+      for (auto& piece : sweep::split_c0(s)) shell.faces.push_back(std::move(piece));
+    }
+    if (opt.solid) {
+      shell.cap_start.push_back(sweep::boundary_v_curve(s, false));
+      shell.cap_end.push_back(sweep::boundary_v_curve(s, true));
     }
   }
-  if (!r.approx_deviation) {
-    const auto hs = sweep::kinematic_surface(lm.motion, lm.factors, profile);
-    check_degree(hs.degree_u, "the surface (along the motion)", f, opt);
-    s = sweep::to_nurbs(hs);
-  }
-  r.degree_u = s.degree_u;
-  r.degree_v = s.degree_v;
+  shell.closed = opt.solid;
+  r.degree_u = surfaces.front().degree_u;
+  r.degree_v = surfaces.front().degree_v;
+  r.continuity_u = r.degree_u;
+  r.continuity_v = r.degree_v;
   r.min_weight = 1.0;
-  for (const auto& row : s.weights) r.min_weight = std::min(r.min_weight, min_weight(row));
-  const auto info = export_info(lm, opt, "kinematic surface of " + profile_name);
-  write_geometry(f, opt, s, info, r);
+  for (const auto& s : surfaces) {
+    r.degree_v = std::max(r.degree_v, s.degree_v);
+    r.continuity_u = std::min(r.continuity_u, sweep::min_continuity(s.knots_u, s.degree_u));
+    r.continuity_v = std::min(r.continuity_v, sweep::min_continuity(s.knots_v, s.degree_v));
+    for (const auto& row : s.weights) r.min_weight = std::min(r.min_weight, min_weight(row));
+  }
+  if (surfaces.size() > 1) r.continuity_v = std::min(r.continuity_v, 0);  // edges meet at C0
+  const bool one_surface = surfaces.size() == 1 && !opt.solid;
+  auto info = export_info(lm, opt, "kinematic surface of " + profile_name);
+  info.units = r.units;
+  switch (f) {
+    case Format::json: {  // exact surfaces per edge (JSON readers handle C0 knots)
+      json doc;
+      if (one_surface) {
+        doc = io::surface_to_json(surfaces.front());
+      } else {
+        doc = json{{"type", "nurbs_shell"}, {"closed", opt.solid}, {"faces", json::array()}};
+        for (const auto& s : surfaces) doc["faces"].push_back(io::surface_to_json(s));
+        if (opt.solid) doc["volume"] = *r.volume;
+      }
+      doc["units"] = r.units;
+      doc["continuity"] = {r.continuity_u, r.continuity_v};
+      if (r.approx_deviation) doc["approximation"] = approximation_json(opt, r, tol);
+      io::write_file_atomic(opt.output, doc.dump(1) + "\n");
+      r.faces = static_cast<int>(surfaces.size());
+      for (const auto& s : surfaces)
+        r.poles += static_cast<int>(s.points.size() * s.points.front().size());
+      return r;
+    }
+    case Format::step:
+      io::write_step(opt.output, shell, info);
+      break;
+    case Format::iges:
+      io::write_iges(opt.output, shell, info);
+      break;
+    case Format::stl:
+      write_stl(opt.output, surfaces, 64);
+      break;
+  }
+  r.faces = static_cast<int>(shell.faces.size()) + (opt.solid ? 2 : 0);
+  for (const auto& s : shell.faces)
+    r.poles += static_cast<int>(s.points.size() * s.points.front().size());
   return r;
 }
 
+namespace {
+
+/// Our name of the unit a STEP/IGES reader reports ("" or an unknown name: `fallback`).
+std::string cad_unit(const std::string& name, const std::string& fallback) {
+  if (name == "mm" || name == "millimetre" || name == "millimeter") return "mm";
+  if (name == "cm" || name == "centimetre" || name == "centimeter") return "cm";
+  if (name == "m" || name == "metre" || name == "meter") return "m";
+  if (name == "in" || name == "inch") return "in";
+  if (name == "ft" || name == "foot") return "ft";
+  if (name == "um" || name == "micrometre" || name == "micrometer" || name == "micron") return "um";
+  return fallback;
+}
+
+/// A face to check: its parameter box, how OpenCASCADE or our reader evaluates it, and
+/// whether its weights are positive.
+struct CheckFace {
+  double u0, u1, v0, v1;
+  std::function<Eigen::Vector3d(double, double)> value;
+  bool weights_positive = true;
+  int degree_u = 0, degree_v = 0;
+};
+
+CheckFace check_face(const sweep::NurbsSurface<double>& s,
+                     std::function<Eigen::Vector3d(double, double)> value) {
+  CheckFace c{s.knots_u.front(), s.knots_u.back(), s.knots_v.front(), s.knots_v.back(),
+              std::move(value)};
+  if (!c.value) c.value = [s](double u, double v) { return sweep::evaluate(s, u, v); };
+  for (const auto& row : s.weights)
+    for (double w : row) c.weights_positive = c.weights_positive && w > 0;
+  c.degree_u = s.degree_u;
+  c.degree_v = s.degree_v;
+  return c;
+}
+
+}  // namespace
+
 json check_geometry(const std::string& file, const LoadedMotion& lm,
-                    const std::optional<sweep::NurbsCurve<double>>& profile,
+                    const std::optional<sweep::Profile<double>>& profile,
                     const std::optional<Eigen::Vector3d>& point, int grid) {
   const bool surface = profile.has_value();
   const std::string e = lower_ext(file);
-  std::function<Eigen::Vector3d(double, double)> value;
-  double u0 = 0, u1 = 0;
-  bool weights_positive = true;
-  int degree_u = 0, degree_v = 0;
+  std::vector<CheckFace> faces;
+  int planar_faces = 0;
+  std::string file_units = lm.file.units;
   json out{{"file", file}, {"kind", surface ? "surface" : "curve"}};
   if (e == ".json") {
     const json doc = io::read_json_file(file);
+    if (doc.is_object() && doc.contains("units") && doc["units"].is_string())
+      file_units = io::canonical_unit(doc["units"].get<std::string>(), file + ": units");
     if (surface) {
-      const auto s = io::surface_from_json(doc, file);
-      value = [s](double u, double v) { return sweep::evaluate(s, u, v); };
-      u0 = s.knots_u.front();
-      u1 = s.knots_u.back();
-      degree_u = s.degree_u;
-      degree_v = s.degree_v;
-      for (const auto& row : s.weights)
-        for (double w : row) weights_positive = weights_positive && w > 0;
+      if (doc.is_object() && doc.value("type", "") == "nurbs_shell") {
+        if (!doc.contains("faces") || !doc["faces"].is_array() || doc["faces"].empty())
+          throw Error(Errc::invalid_input, file + ": faces: expected an array of nurbs_surface");
+        for (std::size_t k = 0; k < doc["faces"].size(); ++k)
+          faces.push_back(check_face(
+              io::surface_from_json(doc["faces"][k], file + ": face " + std::to_string(k + 1)),
+              nullptr));
+      } else {
+        faces.push_back(check_face(io::surface_from_json(doc, file), nullptr));
+      }
     } else {
       const auto c = io::curve_from_json(doc, file);
-      value = [c](double t, double) { return sweep::evaluate(c, t); };
-      u0 = c.knots.front();
-      u1 = c.knots.back();
-      degree_u = c.degree;
+      CheckFace cf{c.knots.front(), c.knots.back(), 0, 0,
+                   [c](double t, double) { return sweep::evaluate(c, t); }};
+      for (double w : c.weights) cf.weights_positive = cf.weights_positive && w > 0;
+      cf.degree_u = c.degree;
+      faces.push_back(cf);
     }
     out["reader"] = "qmotion JSON";
   } else {
+    // Read in the motion's unit (OpenCASCADE converts); deviations are reported in the
+    // unit the file declares.
     const io::CadGeometry g = io::read_cad(file, surface, lm.file.units);
-    value = g.value;
     if (surface) {
-      u0 = g.surface.knots_u.front();
-      u1 = g.surface.knots_u.back();
-      degree_u = g.surface.degree_u;
-      degree_v = g.surface.degree_v;
-      for (const auto& row : g.surface.weights)
-        for (double w : row) weights_positive = weights_positive && w > 0;
+      for (const auto& cf : g.face_list) {
+        if (cf.is_plane) {
+          ++planar_faces;
+          continue;
+        }
+        faces.push_back(check_face(cf.surface, cf.value));
+      }
     } else {
-      u0 = g.curve.knots.front();
-      u1 = g.curve.knots.back();
-      degree_u = g.curve.degree;
-      for (double w : g.curve.weights) weights_positive = weights_positive && w > 0;
+      CheckFace cf{g.curve.knots.front(), g.curve.knots.back(), 0, 0, g.value};
+      for (double w : g.curve.weights) cf.weights_positive = cf.weights_positive && w > 0;
+      cf.degree_u = g.curve.degree;
+      faces.push_back(cf);
     }
     out["reader"] = "OpenCASCADE " + std::string(e == ".igs" || e == ".iges" ? "IGES" : "STEP");
     out["valid"] = g.valid;
     out["faces"] = g.faces;
     out["edges"] = g.edges;
+    out["shells"] = g.shells;
+    out["solids"] = g.solids;
+    out["closed"] = g.closed;
     out["file_units"] = g.file_units;
+    file_units = cad_unit(g.file_units, lm.file.units);
+    if (g.solids > 0)
+      out["volume"] = g.volume * std::pow(io::unit_factor(lm.file.units, file_units), 3);
   }
+  // The file's numbers are in file_units; the motion's in lm.file.units. For STEP/IGES the
+  // reader already converted into the motion's unit: scale only the reported deviation.
+  const bool cad = e != ".json";
+  const double k = io::unit_factor(lm.file.units, file_units);
   const double a = lm.motion.a(), b = lm.motion.b();
-  std::vector<std::pair<double, double>> params;
-  const double v0 = surface ? profile->knots.front() : 0.0,
-               v1 = surface ? profile->knots.back() : 0.0;
-  for (int i = 0; i <= grid; ++i)
-    for (int j = 0; j <= (surface ? grid : 0); ++j)
-      params.emplace_back(a + (b - a) * i / grid, v0 + (v1 - v0) * j / std::max(grid, 1));
-  std::mt19937 g(20261122);
-  std::uniform_real_distribution<double> uu(a, b), vv(v0, surface ? v1 : v0 + 1);
-  for (int k = 0; k < 400; ++k) params.emplace_back(uu(g), surface ? vv(g) : 0.0);
-  double dev = 0;
+  std::mt19937 rng(20261122);
+  double dev = 0, u_lo = faces.front().u0, u_hi = faces.front().u1;
+  bool weights_positive = true;
   std::vector<Eigen::Vector3d> ref;
-  for (const auto& [u, v] : params) {
-    const auto q = kernel::evaluate(lm.motion, u);
-    const Eigen::Vector3d exact =
-        kernel::apply_point(q, surface ? sweep::evaluate(*profile, v) : *point);
-    ref.push_back(exact);
-    dev = std::max(dev, (value(u, v) - exact).norm());
+  std::size_t samples = 0;
+  const std::vector<sweep::NurbsCurve<double>> edges =
+      surface ? profile->edges : std::vector<sweep::NurbsCurve<double>>{};
+  std::vector<double> covered(edges.size(), 0.0);  // parameter area matched per edge
+  for (const auto& face : faces) {
+    weights_positive = weights_positive && face.weights_positive;
+    u_lo = std::min(u_lo, face.u0);
+    u_hi = std::max(u_hi, face.u1);
+    std::vector<std::pair<double, double>> params;
+    for (int i = 0; i <= grid; ++i)
+      for (int j = 0; j <= (surface ? grid : 0); ++j)
+        params.emplace_back(face.u0 + (face.u1 - face.u0) * i / grid,
+                            face.v0 + (face.v1 - face.v0) * j / std::max(grid, 1));
+    std::uniform_real_distribution<double> uu(face.u0, face.u1),
+        vv(face.v0, surface ? face.v1 : face.v0 + 1);
+    for (int s = 0; s < 400; ++s) params.emplace_back(uu(rng), surface ? vv(rng) : face.v0);
+    samples += params.size();
+    std::vector<Eigen::Vector3d> got;
+    for (const auto& [u, v] : params) got.push_back(face.value(u, v) * (cad ? 1.0 : 1.0 / k));
+    // The profile edge this face sweeps: the one it matches best.
+    double best = std::numeric_limits<double>::infinity();
+    std::size_t best_edge = 0;
+    std::vector<Eigen::Vector3d> best_ref;
+    for (std::size_t ed = 0; ed < (surface ? edges.size() : 1); ++ed) {
+      if (surface && (face.v0 < edges[ed].knots.front() || face.v1 > edges[ed].knots.back()))
+        continue;
+      double worst = 0;
+      std::vector<Eigen::Vector3d> r_ed;
+      for (std::size_t s = 0; s < params.size(); ++s) {
+        const double u = std::clamp(params[s].first, a, b);
+        const auto q = kernel::evaluate(lm.motion, u);
+        const Eigen::Vector3d exact =
+            kernel::apply_point(q, surface ? sweep::evaluate(edges[ed], params[s].second) : *point);
+        r_ed.push_back(exact);
+        worst = std::max(worst, (got[s] - exact).norm());
+        if (!(worst < best)) break;  // cannot beat the best edge
+      }
+      if (worst < best) {
+        best = worst;
+        best_edge = ed;
+        best_ref = std::move(r_ed);
+      }
+    }
+    if (best_ref.empty())
+      throw Error(Errc::invalid_input, file + ": a face's v range [" + std::to_string(face.v0) +
+                                           ", " + std::to_string(face.v1) +
+                                           "] lies in no profile edge's parameter range");
+    dev = std::max(dev, best);
+    ref.insert(ref.end(), best_ref.begin(), best_ref.end());
+    if (surface) covered[best_edge] += (face.u1 - face.u0) * (face.v1 - face.v0);
   }
   const double diag = diagonal(ref);
-  out["samples"] = params.size();
-  out["max_deviation"] = dev;
-  out["bbox_diagonal"] = diag;
+  out["samples"] = samples;
+  out["max_deviation"] = dev * k;
+  out["bbox_diagonal"] = diag * k;
   out["relative_deviation"] = diag > 0 ? dev / diag : dev;
-  out["units"] = lm.file.units;
-  out["degree_u"] = degree_u;
-  if (surface) out["degree_v"] = degree_v;
+  out["units"] = file_units;
+  out["degree_u"] = faces.front().degree_u;
+  if (surface) {
+    out["degree_v"] = faces.front().degree_v;
+    out["checked_faces"] = faces.size();
+    out["planar_faces"] = planar_faces;
+    bool cover = true;
+    for (std::size_t ed = 0; ed < edges.size(); ++ed) {
+      const double want = (b - a) * (edges[ed].knots.back() - edges[ed].knots.front());
+      cover = cover && std::abs(covered[ed] - want) <= 1e-9 * want;
+    }
+    out["faces_cover_profile"] = cover;
+  }
   out["weights_positive"] = weights_positive;
-  out["param_range"] = {u0, u1};
+  out["param_range"] = {u_lo, u_hi};
   out["param_range_matches_motion"] =
-      std::abs(u0 - a) <= 1e-12 * (b - a) && std::abs(u1 - b) <= 1e-12 * (b - a);
+      std::abs(u_lo - a) <= 1e-12 * (b - a) && std::abs(u_hi - b) <= 1e-12 * (b - a);
   return out;
 }
 

@@ -9,6 +9,7 @@
 #include "io/motion_json.hpp"
 #include "sweep/factors.hpp"
 #include "sweep/nurbs.hpp"
+#include "sweep/profiles.hpp"
 
 namespace qmotion::cli {
 
@@ -23,10 +24,12 @@ LoadedMotion load_motion(const std::string& path);
 LoadedMotion load_motion(const io::MotionFile& file);
 
 struct GeometryOptions {
-  std::string output;   ///< .json, .step/.stp, .igs/.iges (surfaces also .stl)
-  int max_degree = -1;  ///< approximate above this degree (-1: exact only)
-  double tol = -1;      ///< approximation tolerance (absolute; default 1e-6 x diagonal)
-  std::string units;    ///< declared unit (default: the motion's)
+  std::string output;        ///< .json, .step/.stp, .igs/.iges (surfaces also .stl)
+  int max_degree = -1;       ///< approximate above this degree (-1: exact only)
+  double tol = -1;           ///< approximation tolerance (absolute; default 1e-6 x diagonal)
+  std::string units;         ///< the unit to convert into and declare (default: the motion's)
+  bool single_face = false;  ///< surfaces: one face per profile edge, not split at C0 knots
+  bool solid = false;        ///< surfaces: closed planar profile, add caps, one solid
 };
 
 /// What was written, for messages and the demo's report.
@@ -36,18 +39,26 @@ struct ExportResult {
   int inserted_knots = 0;                  ///< for positive weights
   std::optional<double> approx_deviation;  ///< set when --max-degree approximated
   double min_weight = 0;
+  int continuity_u = 0, continuity_v = 0;  ///< lowest continuity the knots declare
+  int faces = 1;                           ///< faces written (STEP/IGES shells)
+  int poles = 0;                           ///< control points written, all faces
+  std::string units;                       ///< the declared unit of the numbers
+  double unit_factor = 1;                  ///< motion's unit -> declared unit
+  std::optional<double> volume;            ///< --solid: the independent swept volume
 };
 
 ExportResult export_trajectory(const LoadedMotion& lm, const Eigen::Vector3d& point,
                                const GeometryOptions& opt);
-ExportResult export_surface(const LoadedMotion& lm, const sweep::NurbsCurve<double>& profile,
+ExportResult export_surface(const LoadedMotion& lm, const sweep::Profile<double>& profile,
                             const std::string& profile_name, const GeometryOptions& opt);
 
 /// The exactness check: the file's NURBS (read back through OpenCASCADE for STEP/IGES)
 /// against the motion applied to the profile (surfaces) or to the point (curves), on a
-/// grid x grid lattice plus 400 random parameters. JSON report.
+/// grid x grid lattice plus 400 random parameters per face. Every face is matched to the
+/// profile edge it sweeps; planar faces (a solid's caps) are counted. Deviations are in
+/// the unit the file declares. JSON report.
 nlohmann::json check_geometry(const std::string& file, const LoadedMotion& lm,
-                              const std::optional<sweep::NurbsCurve<double>>& profile,
+                              const std::optional<sweep::Profile<double>>& profile,
                               const std::optional<Eigen::Vector3d>& point, int grid = 41);
 
 /// Parses "x,y,z" given to `flag`.

@@ -145,15 +145,21 @@ TEST(OcctErrors, BadFilesAndGeometryAreRefused) {
 
 TEST(Profiles, EveryKindReads) {
   const std::string d = std::string(QMOTION_TEST_DATA) + "/profiles/";
-  EXPECT_EQ(io::read_profile(shared_data("profiles/parabola.json")).degree,
-            2);  // needs QMOTION_SHARED_DATA
-  EXPECT_EQ(io::read_profile("circle:5").points.size(), 9u);
-  EXPECT_EQ(io::read_profile("arc:5,0,90").points.size(), 3u);
-  EXPECT_EQ(io::read_profile("segment:0,0,0:1,2,3").points.back(), Eigen::Vector3d(1, 2, 3));
+  const auto one = [](const std::string& spec) {
+    const auto p = io::read_profile(spec);
+    EXPECT_EQ(p.edges.size(), 1u) << spec;
+    return p.edges.front();
+  };
+  EXPECT_EQ(one(test_data("profiles/parabola.json")).degree, 2);
+  EXPECT_EQ(one("circle:5").points.size(), 9u);
+  EXPECT_TRUE(io::read_profile("circle:5").closed);
+  EXPECT_FALSE(io::read_profile("arc:5,0,90").closed);
+  EXPECT_EQ(one("arc:5,0,90").points.size(), 3u);
+  EXPECT_EQ(one("segment:0,0,0:1,2,3").points.back(), Eigen::Vector3d(1, 2, 3));
   // A STEP profile: its first edge, converted exactly.
   const auto c = sweep::circle(3.0);
   io::write_step(scratch("circle.step").string(), c, {});
-  const auto back = io::read_profile(scratch("circle.step").string());
+  const auto back = one(scratch("circle.step").string());
   for (int i = 0; i <= 20; ++i)
     EXPECT_NEAR(sweep::evaluate(
                     back, back.knots.front() + (back.knots.back() - back.knots.front()) * i / 20.0)
@@ -173,6 +179,53 @@ TEST(Profiles, EveryKindReads) {
                            {"nope.json", "cannot open"}));
   EXPECT_TRUE(throws_error([&] { io::read_profile("profile.dxf"); }, Errc::invalid_input,
                            {"expected a .json"}));
+}
+
+TEST(Profiles, WiresOfSeveralEdges) {
+  // rect: four segments, closed, counter-clockwise about +z, centred at the origin.
+  const auto r = io::read_profile("rect:4,2");
+  ASSERT_EQ(r.edges.size(), 4u);
+  EXPECT_TRUE(r.closed);
+  EXPECT_EQ(r.edges[0].points.front(), Eigen::Vector3d(2, -1, 0));
+  EXPECT_EQ(r.edges[1].points.front(), Eigen::Vector3d(2, 1, 0));
+  for (std::size_t k = 0; k < 4; ++k)
+    EXPECT_EQ(r.edges[k].points.back(), r.edges[(k + 1) % 4].points.front());
+  // polyline: open unless it returns to its first point.
+  const auto open = io::read_profile("polyline:0,0,0:1,0,0:1,1,0");
+  EXPECT_EQ(open.edges.size(), 2u);
+  EXPECT_FALSE(open.closed);
+  EXPECT_TRUE(io::read_profile("polyline:0,0,0:1,0,0:1,1,0:0,0,0").closed);
+  // A JSON array of nurbs_curve is a wire.
+  const std::string wire = test_data("profiles/wire_arc_and_chord.json");
+  const auto w = io::read_profile(wire);
+  ASSERT_EQ(w.edges.size(), 2u);
+  EXPECT_TRUE(w.closed);
+  // A STEP wire: every edge, in order, each reading back its curve exactly.
+  io::write_step(scratch("rect.step").string(), r.edges, {});
+  const auto rb = io::read_profile(scratch("rect.step").string());
+  ASSERT_EQ(rb.edges.size(), 4u);
+  EXPECT_TRUE(rb.closed);
+  for (std::size_t k = 0; k < 4; ++k)
+    for (double v : {0.0, 0.3, 1.0}) {
+      const double s0 = rb.edges[k].knots.front(), s1 = rb.edges[k].knots.back();
+      EXPECT_LT((sweep::evaluate(rb.edges[k], s0 + (s1 - s0) * v) - sweep::evaluate(r.edges[k], v))
+                    .norm(),
+                1e-14)
+          << "edge " << k;
+    }
+  // Bad wires: a gap, bad shorthands.
+  EXPECT_TRUE(throws_error([&] { io::read_profile(test_data("profiles/wire_gap.json")); },
+                           Errc::invalid_input, {"wire_gap.json", "gap", "edge 1", "edge 2"}));
+  EXPECT_TRUE(throws_error([&] { io::read_profile("rect:4"); }, Errc::invalid_input,
+                           {"rect:4", "2 comma-separated"}));
+  EXPECT_TRUE(
+      throws_error([&] { io::read_profile("rect:0,1"); }, Errc::invalid_input, {"positive"}));
+  EXPECT_TRUE(throws_error([&] { io::read_profile("polyline:0,0,0"); }, Errc::invalid_input,
+                           {"at least two points"}));
+  EXPECT_TRUE(throws_error([&] { io::read_profile("polyline:0,0,0:0,0,0"); }, Errc::invalid_input,
+                           {"coincide"}));
+  EXPECT_TRUE(throws_error([&] { io::read_profile("polyline:0,0,0:1,x,0"); }, Errc::invalid_input,
+                           {"polyline"}));
 }
 
 }  // namespace
