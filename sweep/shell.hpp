@@ -74,11 +74,7 @@ std::vector<NurbsSurface<Scalar>> split_c0(const NurbsSurface<Scalar>& s) {
   std::vector<NurbsSurface<Scalar>> out;
   for (const auto& a : pu)
     for (const auto& b : pv) {
-      NurbsSurface<Scalar> f;
-      f.degree_u = s.degree_u;
-      f.degree_v = s.degree_v;
-      f.knots_u = a.knots;
-      f.knots_v = b.knots;
+      NurbsSurface<Scalar> f{s.degree_u, s.degree_v, a.knots, b.knots, {}, {}};
       for (std::size_t i = a.first; i < a.first + a.count; ++i) {
         f.points.emplace_back(s.points[i].begin() + static_cast<std::ptrdiff_t>(b.first),
                               s.points[i].begin() + static_cast<std::ptrdiff_t>(b.first + b.count));
@@ -96,9 +92,7 @@ template <typename Scalar>
 std::vector<NurbsCurve<Scalar>> split_c0(const NurbsCurve<Scalar>& c) {
   std::vector<NurbsCurve<Scalar>> out;
   for (const auto& piece : c0_pieces(c.knots, c.degree)) {
-    NurbsCurve<Scalar> e;
-    e.degree = c.degree;
-    e.knots = piece.knots;
+    NurbsCurve<Scalar> e{c.degree, piece.knots, {}, {}};
     const auto b = static_cast<std::ptrdiff_t>(piece.first),
                e_ = static_cast<std::ptrdiff_t>(piece.first + piece.count);
     e.points.assign(c.points.begin() + b, c.points.begin() + e_);

@@ -1,11 +1,20 @@
 #!/usr/bin/env python3
-"""Interop test: a real CAD client (FreeCAD, headless) reads qmotion's STEP and IGES.
+"""Interop test: a real CAD client (FreeCAD, headless) reads qmotion's STEP and IGES and
+works with them.
 
-Usage: run_freecad.py QMOTION SHARED_DATA WORK_DIR
-Builds the five-pose elliptic + TR motion, sweeps the shared parabola, writes STEP and
-IGES, computes points of the exact surface with `qmotion eval` (motion at u applied to
-the profile point at v), and has FreeCAD check: valid shape, one face, every point on it
-within 1e-7 of the bounding-box diagonal. Exit 0 pass, 1 fail, 77 skip (no freecadcmd).
+Usage: run_freecad.py QMOTION DATA WORK_DIR   (DATA: the repository's tests/data)
+1. Exactness: the five-pose elliptic + TR motion sweeps the parabola to STEP and IGES;
+   points of the exact surface from `qmotion eval` (motion at u applied to the profile
+   point at v) lie on FreeCAD's shape within 1e-7 of the bounding-box diagonal, one valid
+   face each.
+2. Operations, on the STEP files of five sweeps: every shape is valid and FreeCAD's offset
+   (makeOffsetShape 0.5) succeeds; thickening succeeds on the smooth ones (a B-spline
+   motion and a c1 motion x the parabola, a Bezier motion x circle:3); the sharp-edged
+   rect:4,2 shell is held to the outward offset (SPEC §4: OpenCASCADE 7.6 cannot thicken
+   it). The --solid tube is closed, thickens with makeThickness, cuts a box, and its
+   volume matches qmotion's independent value: OpenCASCADE's adaptive BRepGProp (through
+   `qmotion check`) within 1e-6, FreeCAD's fixed-order Volume within 1e-4.
+Exit 0 pass, 1 fail, 77 skip (no freecadcmd).
 """
 import json
 import os
@@ -15,15 +24,15 @@ import sys
 
 
 def main():
-    qmotion, shared, work = sys.argv[1:4]
+    qmotion, data, work = sys.argv[1:4]
     freecad = shutil.which("freecadcmd")
     if not freecad:
         print("freecadcmd not found: install freecad-python3 (scripts/install-deps.sh --test)")
         return 77
     os.makedirs(work, exist_ok=True)
     motion = os.path.join(work, "motion.json")
-    subprocess.run([qmotion, "interpolate", os.path.join(shared, "poses/five_positions.json"), "-o", motion], check=True)
-    profile = os.path.join(shared, "profiles/parabola.json")
+    subprocess.run([qmotion, "interpolate", os.path.join(data, "poses/five_positions.json"), "-o", motion], check=True)
+    profile = os.path.join(data, "profiles/parabola.json")
     files = []
     for ext in (".step", ".igs"):
         out = os.path.join(work, "surface" + ext)
@@ -43,12 +52,14 @@ def main():
             points.append(json.loads(res.stdout)["point"])
     points_file = os.path.join(work, "points.json")
     json.dump(points, open(points_file, "w"))
+    ops = operation_cases(qmotion, data, work)
     result = os.path.join(work, "freecad_result.json")
     if os.path.exists(result):
         os.remove(result)
-    env = dict(os.environ, QMOTION_FC_FILES=",".join(files), QMOTION_FC_POINTS=points_file, QMOTION_FC_RESULT=result)
+    env = dict(os.environ, QMOTION_FC_FILES=",".join(files), QMOTION_FC_POINTS=points_file,
+               QMOTION_FC_RESULT=result, QMOTION_FC_OPS=json.dumps(ops))
     subprocess.run([freecad, os.path.join(os.path.dirname(os.path.abspath(__file__)), "freecad_check.py")], env=env,
-                   stdin=subprocess.DEVNULL, timeout=240)
+                   stdin=subprocess.DEVNULL, timeout=280)
     if not os.path.exists(result):
         print("FreeCAD wrote no result")
         return 1
@@ -60,7 +71,55 @@ def main():
         if r is None or not r["valid"] or r["faces"] != 1 or r["relative_distance"] > 1e-7:
             print("FAIL:", path, r)
             ok = False
+    for case in ops:
+        r = report.get("ops", {}).get(case["name"])
+        failures = [] if r else ["no result"]
+        for key in ["valid", "offset"] + case["expect"]:
+            if r and r.get(key) is not True:
+                failures.append(key + " = " + str(r.get(key)))
+        if r and "volume" in case:
+            fc = abs(r["volume"] - case["volume"]) / case["volume"]
+            if fc > 1e-4:
+                failures.append("FreeCAD volume %r vs %r" % (r["volume"], case["volume"]))
+        if failures:
+            print("FAIL:", case["name"], "; ".join(failures))
+            ok = False
     return 0 if ok else 1
+
+
+def operation_cases(qmotion, data, work):
+    """Writes the five sweeps; returns what FreeCAD must show for each."""
+    def run(*args):
+        return subprocess.run([qmotion] + list(args), check=True, capture_output=True, text=True)
+
+    motions = {}
+    for name, poses, extra in (("bspline", "helix_40.json", []), ("c1", "helix_40.json", ["--form", "c1"]),
+                               ("bezier", "five_positions.json", []), ("screw", "screw_three.json", [])):
+        motions[name] = os.path.join(work, "motion_%s.json" % name)
+        run("interpolate", os.path.join(data, "poses", poses), "-o", motions[name], *extra)
+    parabola = os.path.join(data, "profiles/parabola.json")
+    cases = [("bspline_parabola", "bspline", parabola, [], ["thicken"]),
+             ("c1_parabola", "c1", parabola, [], ["thicken"]),
+             ("bezier_circle", "bezier", "circle:3", [], ["thicken"]),
+             ("screw_rect", "screw", "rect:4,2", [], []),
+             ("screw_tube_solid", "screw", "circle:3", ["--solid"], ["closed", "thicken", "cut"])]
+    out = []
+    for name, motion, profile, extra, expect in cases:
+        step = os.path.join(work, name + ".step")
+        run("sweep", motions[motion], "--profile", profile, "-o", step, *extra)
+        case = {"name": name, "file": step, "expect": expect, "solid": "--solid" in extra}
+        if case["solid"]:
+            shell = os.path.join(work, name + ".json")
+            run("sweep", motions[motion], "--profile", profile, "-o", shell, *extra)
+            case["volume"] = json.load(open(shell))["volume"]
+            occt = json.loads(run("check", step, "--motion", motions[motion], "--profile", profile).stdout)
+            rel = abs(occt["volume"] - case["volume"]) / case["volume"]
+            print("%s: qmotion volume %.12g, OpenCASCADE BRepGProp %.12g (relative %.2e)"
+                  % (name, case["volume"], occt["volume"], rel))
+            if not (rel <= 1e-6 and occt["closed"] and occt["solids"] == 1 and occt["valid"]):
+                raise SystemExit("FAIL: %s: OpenCASCADE's solid %r" % (name, occt))
+        out.append(case)
+    return out
 
 
 if __name__ == "__main__":

@@ -142,6 +142,50 @@ TYPED_TEST(BSplineTest, ProductKnotMultiplicityFollowsContinuity) {
   }
 }
 
+TYPED_TEST(BSplineTest, ABreakpointOneFactorLacksKeepsTheOthersContinuity) {
+  using S = TypeParam;
+  std::mt19937 g(24);
+  // A product with a constant (degree 0, no interior knot) keeps every multiplicity.
+  const auto s = rand_spline<S>(g, 3, 2);  // knots 1/2 (C2), 1 (C1), 2 (C2)
+  const auto c = BSpline<S>::make(0, {S(0), S(3)}, {S(S(5) / S(2))});
+  for (const auto& p : {kernel::product(s, c), kernel::product(c, s)}) {
+    EXPECT_EQ(p.degree(), 3);
+    EXPECT_EQ(p.knots(), s.knots());
+    for (const S& t : sample_params<S>(g, 10))
+      EXPECT_TRUE(
+          coef_near(kernel::evaluate(p, t), S(S(5) / S(2) * kernel::evaluate(s, t)), 1e-12));
+  }
+  // Factors with different breakpoints: each breakpoint keeps the continuity of the factor
+  // that has it, the other being C-infinity there. s: cubic, simple knots 1/2, 1, 2 (C2);
+  // r: quadratic with a single knot at 5/4 (C1). Product degree 5: multiplicity 5 - 2 = 3
+  // at s's knots, 5 - 1 = 4 at r's.
+  const auto s3 = rand_spline<S>(g, 3, 1);
+  const auto r =
+      BSpline<S>::make(2, {S(0), S(0), S(0), S(S(5) / S(4)), S(3), S(3), S(3)},
+                       {rand_coef<S>(g), rand_coef<S>(g), rand_coef<S>(g), rand_coef<S>(g)});
+  const auto sr = kernel::product(s3, r);
+  EXPECT_EQ(sr.degree(), 5);
+  EXPECT_EQ(sr.multiplicity(S(S(1) / S(2))), 3);
+  EXPECT_EQ(sr.multiplicity(S(1)), 3);
+  EXPECT_EQ(sr.multiplicity(S(2)), 3);
+  EXPECT_EQ(sr.multiplicity(S(S(5) / S(4))), 4);
+  for (const S& t : sample_params<S>(g, 20))
+    EXPECT_TRUE(coef_near(kernel::evaluate(sr, t),
+                          S(kernel::evaluate(s3, t) * kernel::evaluate(r, t)), 1e-11));
+  // The declared continuity is true: at 1/2 the two pieces' second derivatives agree, their
+  // third derivatives do not (random data).
+  const S x = S(S(1) / S(2));
+  auto left = kernel::bezier_piece(sr, S(0), x), right = kernel::bezier_piece(sr, x, S(1));
+  for (int k = 0; k < 2; ++k) {
+    left = kernel::derivative(left);
+    right = kernel::derivative(right);
+  }
+  EXPECT_TRUE(coef_near(kernel::evaluate(left, x), kernel::evaluate(right, x), 1e-9));
+  const S jump = S(kernel::evaluate(kernel::derivative(left), x) -
+                   kernel::evaluate(kernel::derivative(right), x));
+  EXPECT_GT(kernel::to_double(kernel::abs_value(jump)), 1e-6);
+}
+
 TEST(BSplineValidation, ReportsEachProblem) {
   using B = BSpline<double>;
   EXPECT_FALSE(B::validate(2, {0, 0, 0, 1, 1, 1}, 3).size());
