@@ -225,15 +225,14 @@ BSpline<Coef> from_bezier_pieces(const std::vector<Bernstein<Coef>>& pieces, int
   std::vector<Coef> ctrl;
   ctrl.reserve(n);
   for (std::size_t i = 0; i < n; ++i) {
-    // Non-empty span within the pole's support [T_i, T_{i+d+1}], nearest its middle.
+    // The widest non-empty span within the pole's support [T_i, T_{i+d+1}]: every such
+    // span's piece has the same blossom there (the continuity the knots state), and the
+    // widest evaluates it best (a piece on a tiny span extrapolates badly).
     std::size_t best = d;
     bool found = false;
     for (std::size_t j = std::max(i, d); j <= std::min(i + d, n - 1); ++j)
       if (knots[j] < knots[j + 1]) {
-        const auto dist = [&](std::size_t jj) {
-          return jj > i + d / 2 ? jj - (i + d / 2) : (i + d / 2) - jj;
-        };
-        if (!found || dist(j) < dist(best)) best = j;
+        if (!found || knots[best + 1] - knots[best] < knots[j + 1] - knots[j]) best = j;
         found = true;
       }
     if (!found) throw Error(Errc::internal, "pole without a non-empty span");

@@ -2,6 +2,7 @@
 #pragma once
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,28 @@ std::vector<Scalar> averaged_knots(const std::vector<Scalar>& t, int p) {
   }
   k.insert(k.end(), up + 1, t.back());
   return k;
+}
+
+/// The interior knots of `knots` that lie within rounding (64 ulp of the interval) of a
+/// knot of `ref`, replaced by it. Averages of different lengths coincide for uniform
+/// parameters but round differently; snapped, the product of the two splines has one
+/// breakpoint there instead of two a few ulp apart (whose tiny span would make its
+/// reassembly ill-conditioned). Interpolation stays exact: any knots satisfying
+/// Schoenberg-Whitney serve. Exact scalars are left alone (their averages are exact).
+template <typename Scalar>
+std::vector<Scalar> snap_knots(std::vector<Scalar> knots, const std::vector<Scalar>& ref) {
+  if constexpr (std::is_floating_point_v<Scalar>) {
+    const Scalar tol = 64 * std::numeric_limits<Scalar>::epsilon() * (knots.back() - knots.front());
+    for (auto& k : knots) {
+      const auto it = std::lower_bound(ref.begin(), ref.end(), k);
+      if (it != ref.end() && *it - k <= tol) {
+        k = *it;
+      } else if (it != ref.begin() && k - *(it - 1) <= tol) {
+        k = *(it - 1);
+      }
+    }
+  }
+  return knots;
 }
 
 /// Poles of the degree-p B-spline on averaged knots through the rows of V at t (one banded
@@ -166,7 +189,7 @@ SplineInterpolation<Scalar> interpolate_bspline(const std::vector<Pose<Scalar>>&
     if (opt.translation == TranslationMethod::minimal)
       S.row(i) *= evaluate(rot, t[static_cast<std::size_t>(i)]).norm2();
   }
-  const auto kt = averaged_knots(t, l);
+  const auto kt = snap_knots(averaged_knots(t, l), kr);
   auto trans = detail::vector_spline(
       l, kt, interpolating_poles(t, kt, l, S, "the translational B-spline system"));
   return detail::finish(

@@ -7,6 +7,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <vector>
@@ -453,6 +455,19 @@ TEST(Cli, BadProfilesAndPolesLeaveNoFile) {
       {{"sweep", pm.string(), "--profile", "circle:3"}, 3, "pole"},
       {{"trajectory", pm.string(), "--point", "1,2,3"}, 3, "pole"},
       {{"trajectory", m.string(), "--point", "1,2"}, 2, "--point"},
+      // New kinds (shells, solids, units): each exit 2 naming what is wrong, or 3 for the
+      // numerical refusal of a back-sweeping solid.
+      {{"sweep", m.string(), "--profile", "arc:3,0,90", "--solid"}, 2, "open"},
+      {{"sweep", m.string(), "--profile", "polyline:0,0,0:1,0,0:1,1,0", "--solid"}, 2, "open"},
+      {{"sweep", m.string(), "--profile", "polyline:0,0,0:1,0,0:1,1,1:0,1,0:0,0,0", "--solid"},
+       2,
+       "planar"},
+      {{"sweep", m.string(), "--profile", d + "wire_gap.json"}, 2, "gap"},
+      {{"sweep", m.string(), "--profile", "rect:2"}, 2, "rect:2"},
+      {{"sweep", m.string(), "--profile", "polyline:1,2,3"}, 2, "at least two points"},
+      {{"sweep", m.string(), "--profile", "circle:3", "--units", "furlong"}, 2, "furlong"},
+      {{"trajectory", m.string(), "--point", "1,2,3", "--units", "yd"}, 2, "unknown length unit"},
+      {{"sweep", m.string(), "--profile", "circle:3", "--solid"}, 3, "sweeps back"},
   };
   for (const std::string ext : {".json", ".step", ".igs"})
     for (const auto& c : cases) {
@@ -462,7 +477,7 @@ TEST(Cli, BadProfilesAndPolesLeaveNoFile) {
       args.insert(args.end(), {"-o", out.string()});
       const Result r = run(args);
       EXPECT_EQ(r.status, c.status) << c.args[3] << ": " << r.err;
-      EXPECT_NE(r.err.find(c.needle), std::string::npos) << r.err;
+      EXPECT_NE(r.err.find(c.needle), std::string::npos) << c.needle << " in: " << r.err;
       EXPECT_FALSE(fs::exists(out)) << c.args[3];
     }
   const Result wrong_ext =
@@ -470,6 +485,183 @@ TEST(Cli, BadProfilesAndPolesLeaveNoFile) {
   EXPECT_EQ(wrong_ext.status, 2);
   const Result both = run({"check", (scratch_dir() / "x.json").string(), "--motion", m.string()});
   EXPECT_EQ(both.status, 2);
+}
+
+/// Multiplicity of each distinct interior knot of a clamped vector.
+std::map<double, int> interior_multiplicities(const json& knots, int degree) {
+  std::map<double, int> m;
+  const std::size_t n = knots.size();
+  for (std::size_t i = static_cast<std::size_t>(degree) + 1; i + degree + 1 < n; ++i)
+    ++m[knots[i].get<double>()];
+  return m;
+}
+
+TEST(Cli, SplineExportsCarryTheMotionsContinuityInTheirKnots) {
+  // Each exported knot has multiplicity degree - c, c the continuity there of the factors
+  // that have that knot (rotation C^(K-1), translation C^(L-1); c1: both C1): never less
+  // than the motion's C^(min(K,L)-1), and the export stays exact.
+  const fs::path m = scratch_dir() / "cont_motion.json";
+  struct Form {
+    std::vector<std::string> args;
+    int k, l, factor_continuity_r, factor_continuity_t;
+  };
+  const std::vector<Form> forms = {{{"--degree", "3", "--translation-degree", "3"}, 3, 3, 2, 2},
+                                   {{"--degree", "2", "--translation-degree", "4"}, 2, 4, 1, 3},
+                                   {{"--degree", "4", "--translation-degree", "3"}, 4, 3, 3, 2},
+                                   {{"--degree", "5", "--translation-degree", "2"}, 5, 2, 4, 1},
+                                   {{"--form", "c1"}, 3, 3, 1, 1}};
+  for (const auto& form : forms) {
+    SCOPED_TRACE(form.args[1]);
+    std::vector<std::string> args = {"interpolate", test_data("poses/helix_40.json"), "-o",
+                                     m.string()};
+    args.insert(args.end(), form.args.begin(), form.args.end());
+    ASSERT_EQ(run(args).status, 0);
+    const json motion = json::parse(slurp(m));
+    const auto rot = interior_multiplicities(motion["method"]["rotation_knots"], form.k);
+    const auto tra = interior_multiplicities(motion["method"]["translation_knots"], form.l);
+    const int motion_continuity = std::min(form.factor_continuity_r, form.factor_continuity_t);
+    const fs::path c = scratch_dir() / "cont_curve.json", s = scratch_dir() / "cont_surf.json";
+    ASSERT_EQ(run({"trajectory", m.string(), "--point", "1,2,3", "-o", c.string()}).status, 0);
+    ASSERT_EQ(run({"sweep", m.string(), "--profile", test_data("profiles/parabola.json"), "-o",
+                   s.string()})
+                  .status,
+              0);
+    const json curve = json::parse(slurp(c)), surf = json::parse(slurp(s));
+    EXPECT_EQ(curve["continuity"], motion_continuity);
+    EXPECT_EQ(surf["continuity"][0], motion_continuity);
+    for (const auto& [knots, degree] :
+         {std::make_pair(curve["knots"], curve["degree"].get<int>()),
+          std::make_pair(surf["knots_u"], surf["degree_u"].get<int>())}) {
+      const auto mult = interior_multiplicities(knots, degree);
+      ASSERT_FALSE(mult.empty());
+      for (const auto& [x, mu] : mult) {
+        int cont = std::numeric_limits<int>::max();
+        if (rot.count(x)) cont = std::min(cont, form.k - rot.at(x));
+        if (tra.count(x)) cont = std::min(cont, form.l - tra.at(x));
+        ASSERT_NE(cont, std::numeric_limits<int>::max()) << "a knot of neither factor: " << x;
+        EXPECT_EQ(mu, degree - cont) << "knot " << x;
+        EXPECT_LE(mu, degree - motion_continuity);
+      }
+    }
+    EXPECT_LE(check(c, m, {"--point", "1,2,3"})["relative_deviation"].get<double>(), 1e-11);
+    EXPECT_LE(check(s, m, {"--profile", test_data("profiles/parabola.json")})["relative_deviation"]
+                  .get<double>(),
+              1e-11);
+  }
+  // helix_40, default B-spline motion: the trajectory of (1,2,3) has degree 9 and C2 knots:
+  // 40 poses, 36 interior knots of multiplicity 7, so 10 + 36 * 7 = 262 poles.
+  ASSERT_EQ(run({"interpolate", test_data("poses/helix_40.json"), "-o", m.string()}).status, 0);
+  const fs::path c = scratch_dir() / "helix_curve.json";
+  ASSERT_EQ(run({"trajectory", m.string(), "--point", "1,2,3", "-o", c.string()}).status, 0);
+  EXPECT_EQ(json::parse(slurp(c))["control_points"].size(), 262u);
+}
+
+TEST(Cli, ShellsSolidsAndUnitsReadBackExactly) {
+  const fs::path screw = scratch_dir() / "screw_motion.json";
+  ASSERT_EQ(run({"interpolate", test_data("poses/screw_three.json"), "-o", screw.string()}).status,
+            0);
+  const fs::path five = five_motion("elliptic", "tr");
+  // circle:3 has C0 joints: four faces in STEP/IGES, one with --single-face; a rect gives
+  // four faces (one per edge); all read back exact, covering the profile.
+  struct Case {
+    fs::path motion;
+    std::string profile;
+    std::vector<std::string> extra;
+    int faces, planar;
+    bool solid;
+  };
+  const std::vector<Case> cases = {{five, "circle:3", {}, 4, 0, false},
+                                   {five, "circle:3", {"--single-face"}, 1, 0, false},
+                                   {screw, "rect:4,2", {}, 4, 0, false},
+                                   {screw, "polyline:0,0,0:3,0,0:3,2,0", {}, 2, 0, false},
+                                   {screw, "circle:3", {"--solid"}, 4, 2, true},
+                                   {screw, "rect:4,2", {"--solid"}, 4, 2, true}};
+  for (const auto& c : cases) {
+    for (const std::string ext : {".step", ".igs", ".json"}) {
+      SCOPED_TRACE(c.profile + (c.extra.empty() ? "" : " " + c.extra[0]) + ext);
+      const fs::path out = scratch_dir() / ("shell" + ext);
+      std::vector<std::string> args = {"sweep", c.motion.string(), "--profile", c.profile,
+                                       "-o",    out.string()};
+      args.insert(args.end(), c.extra.begin(), c.extra.end());
+      const Result r = run(args);
+      ASSERT_EQ(r.status, 0) << r.err;
+      const json k = check(out, c.motion, {"--profile", c.profile});
+      EXPECT_LE(k["relative_deviation"].get<double>(), 1e-11);
+      EXPECT_TRUE(k["faces_cover_profile"].get<bool>());
+      EXPECT_TRUE(k["weights_positive"].get<bool>());
+      if (ext == ".json") continue;
+      EXPECT_TRUE(k["valid"].get<bool>());
+      EXPECT_EQ(k["checked_faces"], c.faces);
+      EXPECT_EQ(k["planar_faces"], c.planar);
+      EXPECT_EQ(k["closed"].get<bool>(), c.solid);
+      if (c.solid && ext == ".step") {
+        EXPECT_EQ(k["solids"], 1);
+        // The independent volume (motion alone) against OpenCASCADE's of the written solid.
+        const fs::path js = scratch_dir() / "solid.json";
+        args[5] = js.string();
+        ASSERT_EQ(run(args).status, 0);
+        const double v = json::parse(slurp(js))["volume"].get<double>();
+        EXPECT_NEAR(k["volume"].get<double>(), v, 1e-6 * v);
+        EXPECT_NE(slurp(out).find("MANIFOLD_SOLID_BREP"), std::string::npos);
+      }
+    }
+  }
+  // --units converts: the same geometry in inches and metres (numbers scaled, unit
+  // declared), and check compares in the file's unit.
+  const fs::path mm = scratch_dir() / "u_mm.json";
+  ASSERT_EQ(run({"sweep", five.string(), "--profile", "circle:3", "-o", mm.string()}).status, 0);
+  const json base = json::parse(slurp(mm));
+  std::map<std::string, double> mm_diagonal;  // per format, of the same samples
+  for (const std::string ext : {".step", ".igs"}) {
+    const fs::path cad = scratch_dir() / ("u_mm" + ext);
+    ASSERT_EQ(run({"sweep", five.string(), "--profile", "circle:3", "-o", cad.string()}).status, 0);
+    mm_diagonal[ext] = check(cad, five, {"--profile", "circle:3"})["bbox_diagonal"].get<double>();
+  }
+  for (const auto& [unit, per_mm] :
+       {std::make_pair(std::string("in"), 1 / 25.4), std::make_pair(std::string("m"), 1e-3),
+        std::make_pair(std::string("um"), 1e3)}) {
+    SCOPED_TRACE(unit);
+    const fs::path js = scratch_dir() / ("u." + unit + ".json");
+    ASSERT_EQ(
+        run({"sweep", five.string(), "--profile", "circle:3", "--units", unit, "-o", js.string()})
+            .status,
+        0);
+    const json doc = json::parse(slurp(js));
+    EXPECT_EQ(doc["units"], unit);
+    const double x0 = base["control_points"][3][2][0].get<double>();
+    EXPECT_NEAR(doc["control_points"][3][2][0].get<double>(), x0 * per_mm,
+                1e-15 * std::abs(x0 * per_mm));
+    const json k = check(js, five, {"--profile", "circle:3"});
+    EXPECT_EQ(k["units"], unit);
+    EXPECT_LE(k["relative_deviation"].get<double>(), 1e-11);
+    for (const std::string ext : {".step", ".igs"}) {
+      const fs::path cad = scratch_dir() / ("u" + ext);
+      ASSERT_EQ(run({"sweep", five.string(), "--profile", "circle:3", "--units", unit, "-o",
+                     cad.string()})
+                    .status,
+                0);
+      const json kc = check(cad, five, {"--profile", "circle:3"});
+      EXPECT_EQ(kc["units"], unit) << ext;
+      EXPECT_LE(kc["relative_deviation"].get<double>(), 1e-11) << ext;
+      // Reported in the file's unit: the millimetre file's size, converted.
+      EXPECT_NEAR(kc["bbox_diagonal"].get<double>(), mm_diagonal[ext] * per_mm,
+                  1e-9 * mm_diagonal[ext] * per_mm);
+    }
+  }
+  // A trajectory in inches: the numbers are the millimetre numbers / 25.4.
+  const fs::path tmm = scratch_dir() / "t_mm.json", tin = scratch_dir() / "t_in.json";
+  ASSERT_EQ(run({"trajectory", five.string(), "--point", "1,2,3", "-o", tmm.string()}).status, 0);
+  ASSERT_EQ(
+      run({"trajectory", five.string(), "--point", "1,2,3", "--units", "in", "-o", tin.string()})
+          .status,
+      0);
+  const json a = json::parse(slurp(tmm)), b = json::parse(slurp(tin));
+  ASSERT_EQ(a["control_points"].size(), b["control_points"].size());
+  for (std::size_t i = 0; i < a["control_points"].size(); ++i)
+    for (int j = 0; j < 3; ++j)
+      EXPECT_NEAR(b["control_points"][i][j].get<double>() * 25.4,
+                  a["control_points"][i][j].get<double>(), 1e-12 * 200);
+  EXPECT_LE(check(tin, five, {"--point", "1,2,3"})["relative_deviation"].get<double>(), 1e-11);
 }
 
 TEST(Cli, SplineMotionsByDefaultBeyondSixPoses) {
