@@ -112,6 +112,11 @@ sweep::NurbsSurface<double> surface_from_json(const json& j, const std::string& 
     if (s.weights.back().size() != pts[i].size())
       throw Error(Errc::invalid_input,
                   where + ": weights[" + std::to_string(i) + "]: wrong length");
+    for (std::size_t k = 0; k < s.weights.back().size(); ++k)
+      if (!(s.weights.back()[k] > 0))
+        throw Error(Errc::invalid_input,
+                    where + ": weights[" + std::to_string(i) + "][" + std::to_string(k) + "] = " +
+                        std::to_string(s.weights.back()[k]) + ": weights must be positive");
     for (std::size_t k = 0; k < pts[i].size(); ++k) {
       const auto p = read_array(pts[i][k], wi + "[" + std::to_string(k) + "]");
       if (p.size() != 3)

@@ -150,29 +150,40 @@ sweep::NurbsSurface<double> edge_surface(const LoadedMotion& lm,
       for (const auto& c : cols) diag = std::max(diag, diagonal(curve_samples(c, 100)));
       const double tol = opt.tol > 0 ? opt.tol : 1e-6 * diag;
       tol_used = tol;
-      const auto approx = sweep::approximate_homogeneous(cols, opt.max_degree, tol);
-      sweep::HomogeneousSurface<double> hs{approx.curves.front().degree(),
-                                           profile.degree,
-                                           approx.curves.front().knots(),
-                                           profile.knots,
-                                           {}};
-      hs.poles.assign(approx.curves.front().ctrl().size(),
-                      std::vector<sweep::Vec4<double>>(cols.size()));
-      for (std::size_t j = 0; j < cols.size(); ++j)
-        for (std::size_t i = 0; i < hs.poles.size(); ++i)
-          hs.poles[i][j] = approx.curves[j].ctrl()[i];
-      const auto s = sweep::to_nurbs(hs);
-      // The surface's own deviation, measured.
-      double dev = 0;
-      for (int i = 0; i <= 40; ++i)
-        for (int j = 0; j <= 40; ++j) {
-          const double u = lm.motion.a() + (lm.motion.b() - lm.motion.a()) * i / 40.0;
-          const double v =
-              profile.knots.front() + (profile.knots.back() - profile.knots.front()) * j / 40.0;
-          const auto exact =
-              kernel::apply_point(kernel::evaluate(lm.motion, u), sweep::evaluate(profile, v));
-          dev = std::max(dev, (sweep::evaluate(s, u, v) - exact).norm());
-        }
+      // The columns are fitted within a tolerance; the surface between them is measured on
+      // an 81 x 81 lattice and held to half the tolerance (denser checks then stay within
+      // it), tightening the columns' tolerance up to five times.
+      double dev = HUGE_VAL, col_tol = tol;
+      sweep::NurbsSurface<double> s;
+      for (int attempt = 0; attempt < 6 && !(dev <= 0.5 * tol); ++attempt, col_tol /= 4) {
+        const auto approx = sweep::approximate_homogeneous(cols, opt.max_degree, col_tol);
+        sweep::HomogeneousSurface<double> hs{approx.curves.front().degree(),
+                                             profile.degree,
+                                             approx.curves.front().knots(),
+                                             profile.knots,
+                                             {}};
+        hs.poles.assign(approx.curves.front().ctrl().size(),
+                        std::vector<sweep::Vec4<double>>(cols.size()));
+        for (std::size_t j = 0; j < cols.size(); ++j)
+          for (std::size_t i = 0; i < hs.poles.size(); ++i)
+            hs.poles[i][j] = approx.curves[j].ctrl()[i];
+        s = sweep::to_nurbs(hs);
+        dev = 0;
+        for (int i = 0; i <= 80; ++i)
+          for (int j = 0; j <= 80; ++j) {
+            const double u = lm.motion.a() + (lm.motion.b() - lm.motion.a()) * i / 80.0;
+            const double v =
+                profile.knots.front() + (profile.knots.back() - profile.knots.front()) * j / 80.0;
+            const auto exact =
+                kernel::apply_point(kernel::evaluate(lm.motion, u), sweep::evaluate(profile, v));
+            dev = std::max(dev, (sweep::evaluate(s, u, v) - exact).norm());
+          }
+      }
+      if (!(dev <= tol))
+        throw Error(Errc::numerical_failure,
+                    "--max-degree " + std::to_string(opt.max_degree) +
+                        ": the approximated surface deviates by " + std::to_string(dev) +
+                        ", more than the tolerance " + std::to_string(tol));
       r.approx_deviation = std::max(r.approx_deviation.value_or(0.0), dev);
       return s;
     }

@@ -43,9 +43,13 @@ TYPED_TEST(DualQuaternionTest, PosesAndTheirProductsSatisfyPlucker) {
     // A scale factor keeps Plucker and the displacement.
     EXPECT_TRUE(coef_near(kernel::plucker(DQ(a * S(5))), S(0)));
   }
-  // A random dual quaternion is generally not a displacement.
+  // A random dual quaternion is generally not a displacement: its Plucker form is not zero
+  // (equal to the 4-vector dot product of its parts, checked on a hand-made one).
   const DQ r = rand_coef<DQ>(g);
-  EXPECT_FALSE(kernel::is_exact_zero(kernel::plucker(r)) && kernel::is_exact_zero(r.dual()));
+  EXPECT_FALSE(coef_near(kernel::plucker(r), S(0)));
+  const DQ h(kernel::Quaternion<S>(S(1), S(2), S(0), S(-1)),
+             kernel::Quaternion<S>(S(3), S(0), S(5), S(2)));
+  EXPECT_EQ(kernel::plucker(h), S(1));  // 1*3 + 2*0 + 0*5 + (-1)*2
 }
 
 TYPED_TEST(DualQuaternionTest, PoseMapsOriginToPositionAndComposes) {

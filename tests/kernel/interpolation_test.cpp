@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 
 #include "io/exact_number.hpp"
 #include "io/poses.hpp"
@@ -337,17 +338,58 @@ TEST(Interpolation, ProjectiveChoiceIsDeterministicWhenTheNullSpaceIsLarger) {
       kernel::interpolate_bezier(p, t, options(RotationMethod::projective, TranslationMethod::tr));
   EXPECT_EQ(a.rotation.degree(), 4);
   for (int j = 0; j <= 4; ++j) EXPECT_EQ(a.rotation[j], b.rotation[j]);
-  // It is the solution nearest the normalised rotations: no other in the family is nearer.
+  // It is the member of the solution family nearest the normalised rotations. The family,
+  // built here independently: every quaternion polynomial q of degree k with q(t_i)
+  // parallel to r_i, i.e. w(r_i) vec(q(t_i)) - w(q(t_i)) vec(r_i) = 0 (the null space of
+  // these 3(m+1) equations in the 4(k+1) Bernstein coefficients).
+  const int k = a.rotation.degree();
+  Eigen::MatrixXd E = Eigen::MatrixXd::Zero(3 * static_cast<Eigen::Index>(p.size()), 4 * (k + 1));
+  for (std::size_t i = 0; i < p.size(); ++i)
+    for (int j = 0; j <= k; ++j) {
+      const double bij = kernel::binomial<double>(k, j) * std::pow(t[i] - t.front(), j) *
+                         std::pow(t.back() - t[i], k - j) / std::pow(t.back() - t.front(), k);
+      const auto& r = p[i].rotation;
+      for (int c = 1; c <= 3; ++c) {
+        E(3 * static_cast<Eigen::Index>(i) + c - 1, 4 * j + c) += bij * r.w();
+        E(3 * static_cast<Eigen::Index>(i) + c - 1, 4 * j) -= bij * r[c];
+      }
+    }
+  const Eigen::MatrixXd N = Eigen::FullPivLU<Eigen::MatrixXd>(E).kernel();
+  ASSERT_EQ(N.cols(), 2);  // the larger null space this case is about
+  auto poly = [&](const Eigen::VectorXd& c) {
+    std::vector<Quaternion<double>> q;
+    for (int j = 0; j <= k; ++j) q.emplace_back(c(4 * j), c(4 * j + 1), c(4 * j + 2), c(4 * j + 3));
+    return kernel::Bernstein<Quaternion<double>>(std::move(q), t.front(), t.back());
+  };
   const auto R = kernel::normalized_rotations(p);
   auto misfit = [&](const kernel::Bernstein<Quaternion<double>>& q) {
     double s = 0;
     for (std::size_t i = 0; i < p.size(); ++i) s += (kernel::evaluate(q, t[i]) - R[i]).norm2();
     return s;
   };
-  EXPECT_LT(misfit(a.rotation),
-            misfit(kernel::map_coeffs(a.rotation, [](const Quaternion<double>& x) {
-              return Quaternion<double>(x * 1.01);
-            })));
+  Eigen::VectorXd ca(4 * (k + 1));
+  for (int j = 0; j <= k; ++j)
+    for (int c = 0; c < 4; ++c) ca(4 * j + c) = a.rotation[j][c];
+  // The chosen solution is in the family ...
+  EXPECT_LE((E * ca).norm(), 1e-12 * ca.norm());
+  // ... and no other member is nearer: random members and small steps along each null
+  // direction all fit worse, and the misfit's gradient along the family vanishes.
+  std::mt19937 g(7);
+  std::normal_distribution<double> nd;
+  const double best = misfit(a.rotation);
+  for (int trial = 0; trial < 200; ++trial) {
+    const Eigen::Vector2d y(nd(g), nd(g));
+    EXPECT_GE(misfit(poly(N * y)), best - 1e-12);
+    const double step = trial < 100 ? 1e-3 : 1e-1;
+    EXPECT_GE(misfit(poly(ca + step * (N * y).normalized())), best - 1e-12);
+  }
+  for (Eigen::Index c = 0; c < N.cols(); ++c) {
+    const auto n = poly(N.col(c));
+    double grad = 0;
+    for (std::size_t i = 0; i < p.size(); ++i)
+      grad += (kernel::evaluate(a.rotation, t[i]) - R[i]).dot(kernel::evaluate(n, t[i]));
+    EXPECT_LE(std::abs(grad), 1e-10);
+  }
 }
 
 struct Refusal {
