@@ -1,9 +1,8 @@
 // examples/eval_motion.cpp: read a motion file and print where the moving origin is at
 // eleven parameters, with the Plucker residual of the whole motion.
 #include <iostream>
-
-#include "io/motion_json.hpp"
-#include "kernel/error.hpp"
+#include <qmotion/io/motion_json.hpp>
+#include <qmotion/kernel/error.hpp>
 
 int main(int argc, char** argv) {
   if (argc != 2) {

@@ -1,6 +1,4 @@
 // io/atomic_file.cpp
-#include "io/atomic_file.hpp"
-
 #include <unistd.h>
 
 #include <cerrno>
@@ -8,9 +6,9 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <qmotion/io/atomic_file.hpp>
+#include <qmotion/kernel/error.hpp>
 #include <random>
-
-#include "kernel/error.hpp"
 
 namespace qmotion::io {
 

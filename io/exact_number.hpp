@@ -1,11 +1,10 @@
 // io/exact_number.hpp
 #pragma once
 // Exact conversion of number text to CGAL::Exact_rational (exact mode).
+#include <qmotion/kernel/cgal_scalar.hpp>
+#include <qmotion/kernel/error.hpp>
 #include <sstream>
 #include <string>
-
-#include "kernel/cgal_scalar.hpp"
-#include "kernel/error.hpp"
 
 namespace qmotion::io {
 

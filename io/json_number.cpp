@@ -1,16 +1,14 @@
 // io/json_number.cpp
-#include "io/json_number.hpp"
-
 #include <cmath>
 #include <fstream>
+#include <qmotion/io/json_number.hpp>
+#include <qmotion/kernel/error.hpp>
 #include <regex>
 #include <sstream>
 #include <vector>
 
-#include "kernel/error.hpp"
-
 #ifdef QMOTION_WITH_CGAL
-#include "io/exact_number.hpp"
+#include <qmotion/io/exact_number.hpp>
 #endif
 
 namespace qmotion::io {

@@ -1,11 +1,10 @@
 // io/motion_json.cpp
-#include "io/motion_json.hpp"
-
-#include "io/poses.hpp"
-#include "kernel/error.hpp"
+#include <qmotion/io/motion_json.hpp>
+#include <qmotion/io/poses.hpp>
+#include <qmotion/kernel/error.hpp>
 
 #ifdef QMOTION_WITH_CGAL
-#include "io/exact_number.hpp"
+#include <qmotion/io/exact_number.hpp>
 #endif
 
 namespace qmotion::io {

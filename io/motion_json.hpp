@@ -2,15 +2,14 @@
 #pragma once
 #include <array>
 #include <nlohmann/json.hpp>
+#include <qmotion/io/json_number.hpp>
+#include <qmotion/kernel/motion.hpp>
+#include <qmotion/sweep/factors.hpp>
 #include <string>
 #include <vector>
 
-#include "io/json_number.hpp"
-#include "kernel/motion.hpp"
-#include "sweep/factors.hpp"
-
 #ifdef QMOTION_WITH_CGAL
-#include "kernel/cgal_scalar.hpp"
+#include <qmotion/kernel/cgal_scalar.hpp>
 #endif
 
 namespace qmotion::io {

@@ -1,8 +1,7 @@
 // io/nurbs_json.cpp
-#include "io/nurbs_json.hpp"
-
-#include "io/json_number.hpp"
-#include "kernel/error.hpp"
+#include <qmotion/io/json_number.hpp>
+#include <qmotion/io/nurbs_json.hpp>
+#include <qmotion/kernel/error.hpp>
 
 namespace qmotion::io {
 namespace {

@@ -1,9 +1,8 @@
 // io/nurbs_json.hpp
 #pragma once
 #include <nlohmann/json.hpp>
+#include <qmotion/sweep/nurbs.hpp>
 #include <string>
-
-#include "sweep/nurbs.hpp"
 
 namespace qmotion::io {
 

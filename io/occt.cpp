@@ -1,6 +1,4 @@
 // io/occt.cpp: the only place OpenCASCADE appears (STYLE §4).
-#include "io/occt.hpp"
-
 #include <APIHeaderSection_MakeHeader.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
@@ -59,11 +57,11 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <qmotion/io/atomic_file.hpp>
+#include <qmotion/io/occt.hpp>
+#include <qmotion/io/units.hpp>
+#include <qmotion/kernel/error.hpp>
 #include <sstream>
-
-#include "io/atomic_file.hpp"
-#include "io/units.hpp"
-#include "kernel/error.hpp"
 
 namespace qmotion::io {
 namespace {

@@ -4,11 +4,10 @@
 // arrays and knot/multiplicity pairs stay in occt.cpp (STYLE §4, §9).
 #include <Eigen/Core>
 #include <functional>
+#include <qmotion/sweep/nurbs.hpp>
+#include <qmotion/sweep/shell.hpp>
 #include <string>
 #include <vector>
-
-#include "sweep/nurbs.hpp"
-#include "sweep/shell.hpp"
 
 namespace qmotion::io {
 

@@ -1,7 +1,6 @@
 // io/occt_info.cpp: OpenCASCADE stays inside io/ (STYLE §4).
-#include "io/occt_info.hpp"
-
 #include <Standard_Version.hxx>
+#include <qmotion/io/occt_info.hpp>
 
 namespace qmotion::io {
 

@@ -1,17 +1,15 @@
 // io/poses.cpp
-#include "io/poses.hpp"
-
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <qmotion/io/poses.hpp>
+#include <qmotion/kernel/error.hpp>
 #include <sstream>
-
-#include "kernel/error.hpp"
 #ifdef QMOTION_WITH_CGAL
-#include "io/exact_number.hpp"
+#include <qmotion/io/exact_number.hpp>
 #endif
-#include "kernel/quaternion.hpp"
+#include <qmotion/kernel/quaternion.hpp>
 
 namespace qmotion::io {
 namespace {

@@ -4,14 +4,13 @@
 #include <array>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <qmotion/io/json_number.hpp>
+#include <qmotion/kernel/pose.hpp>
 #include <string>
 #include <vector>
 
-#include "io/json_number.hpp"
-#include "kernel/pose.hpp"
-
 #ifdef QMOTION_WITH_CGAL
-#include "kernel/cgal_scalar.hpp"
+#include <qmotion/kernel/cgal_scalar.hpp>
 #endif
 
 namespace qmotion::io {

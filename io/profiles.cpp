@@ -1,15 +1,13 @@
 // io/profiles.cpp
-#include "io/profiles.hpp"
-
 #include <filesystem>
+#include <qmotion/io/json_number.hpp>
+#include <qmotion/io/nurbs_json.hpp>
+#include <qmotion/io/occt.hpp>
+#include <qmotion/io/profiles.hpp>
+#include <qmotion/kernel/error.hpp>
+#include <qmotion/sweep/profiles.hpp>
 #include <sstream>
 #include <vector>
-
-#include "io/json_number.hpp"
-#include "io/nurbs_json.hpp"
-#include "io/occt.hpp"
-#include "kernel/error.hpp"
-#include "sweep/profiles.hpp"
 
 namespace qmotion::io {
 namespace {

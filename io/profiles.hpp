@@ -1,9 +1,8 @@
 // io/profiles.hpp
 #pragma once
+#include <qmotion/sweep/nurbs.hpp>
+#include <qmotion/sweep/profiles.hpp>
 #include <string>
-
-#include "sweep/nurbs.hpp"
-#include "sweep/profiles.hpp"
 
 namespace qmotion::io {
 

@@ -1,8 +1,7 @@
 // io/units.hpp: the length units qmotion reads, declares and converts between (SPEC §6).
 #pragma once
+#include <qmotion/kernel/error.hpp>
 #include <string>
-
-#include "kernel/error.hpp"
 
 namespace qmotion::io {
 

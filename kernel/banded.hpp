@@ -1,9 +1,8 @@
 // kernel/banded.hpp
 #pragma once
+#include <qmotion/kernel/linear_solve.hpp>
 #include <string>
 #include <vector>
-
-#include "kernel/linear_solve.hpp"
 
 namespace qmotion::kernel {
 

@@ -1,12 +1,11 @@
 // kernel/bernstein.hpp
 #pragma once
 #include <cstddef>
+#include <qmotion/kernel/coefficient.hpp>
+#include <qmotion/kernel/error.hpp>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include "kernel/coefficient.hpp"
-#include "kernel/error.hpp"
 
 namespace qmotion::kernel {
 

@@ -2,12 +2,11 @@
 #pragma once
 #include <algorithm>
 #include <limits>
+#include <qmotion/kernel/bernstein.hpp>
 #include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include "kernel/bernstein.hpp"
 
 namespace qmotion::kernel {
 

@@ -7,8 +7,7 @@
 #include <CGAL/Exact_rational.h>
 
 #include <Eigen/Core>
-
-#include "kernel/scalar_traits.hpp"
+#include <qmotion/kernel/scalar_traits.hpp>
 
 namespace qmotion::kernel {
 

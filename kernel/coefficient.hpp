@@ -6,10 +6,9 @@
 // Eigen vectors and matrices, Quaternion and DualQuaternion.
 #include <Eigen/Core>
 #include <algorithm>
+#include <qmotion/kernel/dual_quaternion.hpp>
+#include <qmotion/kernel/scalar_traits.hpp>
 #include <type_traits>
-
-#include "kernel/dual_quaternion.hpp"
-#include "kernel/scalar_traits.hpp"
 
 namespace qmotion::kernel {
 

@@ -1,8 +1,7 @@
 // kernel/dual_quaternion.hpp
 #pragma once
 #include <Eigen/Core>
-
-#include "kernel/quaternion.hpp"
+#include <qmotion/kernel/quaternion.hpp>
 
 namespace qmotion::kernel {
 

@@ -2,14 +2,13 @@
 #pragma once
 #include <cmath>
 #include <optional>
+#include <qmotion/kernel/linear_solve.hpp>
+#include <qmotion/kernel/motion.hpp>
+#include <qmotion/kernel/pose.hpp>
 #include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include "kernel/linear_solve.hpp"
-#include "kernel/motion.hpp"
-#include "kernel/pose.hpp"
 
 namespace qmotion::kernel {
 

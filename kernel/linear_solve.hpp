@@ -1,11 +1,10 @@
 // kernel/linear_solve.hpp
 #pragma once
 #include <Eigen/Dense>
+#include <qmotion/kernel/bernstein.hpp>
+#include <qmotion/kernel/error.hpp>
 #include <string>
 #include <vector>
-
-#include "kernel/bernstein.hpp"
-#include "kernel/error.hpp"
 
 namespace qmotion::kernel {
 

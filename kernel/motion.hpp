@@ -2,11 +2,10 @@
 #pragma once
 #include <algorithm>
 #include <cmath>
+#include <qmotion/kernel/bspline.hpp>
+#include <qmotion/kernel/dual_quaternion.hpp>
 #include <utility>
 #include <vector>
-
-#include "kernel/bspline.hpp"
-#include "kernel/dual_quaternion.hpp"
 
 namespace qmotion::kernel {
 

@@ -2,8 +2,7 @@
 #pragma once
 #include <Eigen/Core>
 #include <optional>
-
-#include "kernel/interpolation.hpp"
+#include <qmotion/kernel/interpolation.hpp>
 
 namespace qmotion::kernel {
 

@@ -1,9 +1,8 @@
 // kernel/order.hpp
 #pragma once
+#include <qmotion/kernel/linear_solve.hpp>
+#include <qmotion/kernel/motion.hpp>
 #include <vector>
-
-#include "kernel/linear_solve.hpp"
-#include "kernel/motion.hpp"
 
 namespace qmotion::kernel {
 

@@ -2,11 +2,10 @@
 #pragma once
 #include <cmath>
 #include <optional>
+#include <qmotion/kernel/error.hpp>
+#include <qmotion/kernel/pose.hpp>
 #include <string>
 #include <vector>
-
-#include "kernel/error.hpp"
-#include "kernel/pose.hpp"
 
 namespace qmotion::kernel {
 

@@ -4,8 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
-
-#include "kernel/dual_quaternion.hpp"
+#include <qmotion/kernel/dual_quaternion.hpp>
 
 namespace qmotion::kernel {
 

@@ -3,10 +3,9 @@
 #include <Eigen/Core>
 #include <array>
 #include <cmath>
+#include <qmotion/kernel/error.hpp>
+#include <qmotion/kernel/scalar_traits.hpp>
 #include <type_traits>
-
-#include "kernel/error.hpp"
-#include "kernel/scalar_traits.hpp"
 
 namespace qmotion::kernel {
 

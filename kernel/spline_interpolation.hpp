@@ -3,11 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <qmotion/kernel/banded.hpp>
+#include <qmotion/kernel/motion_factors.hpp>
 #include <string>
 #include <vector>
-
-#include "kernel/banded.hpp"
-#include "kernel/motion_factors.hpp"
 
 namespace qmotion::kernel {
 

@@ -3,10 +3,9 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <qmotion/kernel/bspline.hpp>
+#include <qmotion/sweep/weights.hpp>
 #include <vector>
-
-#include "kernel/bspline.hpp"
-#include "sweep/weights.hpp"
 
 namespace qmotion::sweep {
 

@@ -2,8 +2,7 @@
 #pragma once
 #include <Eigen/Core>
 #include <optional>
-
-#include "kernel/motion_factors.hpp"
+#include <qmotion/kernel/motion_factors.hpp>
 
 namespace qmotion::sweep {
 

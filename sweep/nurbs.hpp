@@ -2,9 +2,8 @@
 #pragma once
 #include <Eigen/Core>
 #include <algorithm>
+#include <qmotion/kernel/bspline.hpp>
 #include <vector>
-
-#include "kernel/bspline.hpp"
 
 namespace qmotion::sweep {
 

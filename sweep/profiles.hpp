@@ -1,11 +1,10 @@
 // sweep/profiles.hpp
 #pragma once
 #include <cmath>
+#include <qmotion/kernel/error.hpp>
+#include <qmotion/sweep/nurbs.hpp>
 #include <string>
 #include <vector>
-
-#include "kernel/error.hpp"
-#include "sweep/nurbs.hpp"
 
 namespace qmotion::sweep {
 

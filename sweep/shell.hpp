@@ -1,10 +1,9 @@
 // sweep/shell.hpp
 #pragma once
 #include <algorithm>
+#include <qmotion/sweep/nurbs.hpp>
 #include <utility>
 #include <vector>
-
-#include "sweep/nurbs.hpp"
 
 namespace qmotion::sweep {
 

@@ -4,13 +4,12 @@
 #include <Eigen/Dense>
 #include <cmath>
 #include <optional>
+#include <qmotion/kernel/error.hpp>
+#include <qmotion/kernel/motion.hpp>
+#include <qmotion/sweep/profiles.hpp>
+#include <qmotion/sweep/surface.hpp>
 #include <string>
 #include <vector>
-
-#include "kernel/error.hpp"
-#include "kernel/motion.hpp"
-#include "sweep/profiles.hpp"
-#include "sweep/surface.hpp"
 
 namespace qmotion::sweep {
 

@@ -1,11 +1,10 @@
 // sweep/surface.hpp
 #pragma once
 #include <optional>
+#include <qmotion/sweep/nurbs.hpp>
+#include <qmotion/sweep/trajectory.hpp>
+#include <qmotion/sweep/weights.hpp>
 #include <vector>
-
-#include "sweep/nurbs.hpp"
-#include "sweep/trajectory.hpp"
-#include "sweep/weights.hpp"
 
 namespace qmotion::sweep {
 

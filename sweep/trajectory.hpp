@@ -3,10 +3,9 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <optional>
+#include <qmotion/kernel/motion.hpp>
+#include <qmotion/sweep/factors.hpp>
 #include <vector>
-
-#include "kernel/motion.hpp"
-#include "sweep/factors.hpp"
 
 namespace qmotion::sweep {
 

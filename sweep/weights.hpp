@@ -1,9 +1,8 @@
 // sweep/weights.hpp
 #pragma once
 #include <algorithm>
+#include <qmotion/kernel/bspline.hpp>
 #include <vector>
-
-#include "kernel/bspline.hpp"
 
 namespace qmotion::sweep {
 

@@ -3,10 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <functional>
+#include <qmotion/kernel/error.hpp>
 #include <string>
 #include <vector>
-
-#include "kernel/error.hpp"
 
 namespace qmotion::test {
 

@@ -3,11 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <qmotion/kernel/cgal_scalar.hpp>
+#include <qmotion/kernel/coefficient.hpp>
 #include <random>
 #include <vector>
-
-#include "kernel/cgal_scalar.hpp"
-#include "kernel/coefficient.hpp"
 
 namespace qmotion::test {
 

@@ -1,14 +1,47 @@
-// A user's program against the installed qmotion: a pose product satisfies Plucker.
+// A user's program against the installed qmotion (find_package(qmotion), <qmotion/...>):
+// the main job through library calls only. Five poses -> elliptic + TR motion -> the
+// kinematic surface of a circle as a sewn STEP shell and as a closed solid -> read back
+// through OpenCASCADE and checked against the motion.
+// Usage: consumer OUT_DIR   (exit 0 when the files are exact and valid)
+#include <cmath>
+#include <filesystem>
 #include <iostream>
+#include <qmotion/qmotion.hpp>
 
-#include "io/occt_info.hpp"
-#include "kernel/dual_quaternion.hpp"
+namespace qm = qmotion;
 
-int main() {
-  using DQ = qmotion::kernel::DualQuaternion<double>;
-  const DQ a = DQ::pose({1, 2, 3}, {1, 0, 0, 1});
-  const DQ b = DQ::pose({-4, 0, 1}, {2, 1, 0, 0});
-  const double r = qmotion::kernel::plucker(a * b);
-  std::cout << "plucker residual " << r << ", OpenCASCADE " << qmotion::io::occt_version() << "\n";
-  return r == 0.0 ? 0 : 1;
+constexpr const char* kPoses = R"({"units":"mm","poses":[
+ {"t":0,"position":[0,0,0],"rotation":{"quaternion":[1,0,0,0]}},
+ {"t":0.5,"position":[1,0,10],"rotation":{"axis_angle":{"axis":[0,0,1],"angle_deg":30}}},
+ {"t":1,"position":[0,1,20],"rotation":{"axis_angle":{"axis":[0.1,0,1],"angle_deg":60}}}]})";
+
+int main(int argc, char** argv) {
+  const std::filesystem::path out = argc > 1 ? argv[1] : ".";
+  try {
+    std::filesystem::create_directories(out);
+    const qm::io::PoseSet poses = qm::io::parse_poses_json(kPoses, "the consumer's poses");
+    const qm::io::InterpolatedMotion made = qm::io::interpolate(poses, {});
+    const qm::io::LoadedMotion motion =
+        qm::io::load_motion(qm::io::parse_motion(made.document, "motion"));
+    const qm::sweep::Profile<double> circle = qm::io::read_profile("circle:3");
+    bool ok = true;
+    for (const bool solid : {false, true}) {
+      qm::io::ExportOptions opt;
+      opt.output = (out / (solid ? "tube_solid.step" : "tube.step")).string();
+      opt.solid = solid;
+      const qm::io::ExportResult r = qm::io::export_surface(motion, circle, "circle:3", opt);
+      const nlohmann::json c = qm::io::check_geometry(opt.output, motion, circle, std::nullopt);
+      std::cout << opt.output << ": " << r.faces << " faces, relative deviation "
+                << c["relative_deviation"] << ", valid " << c["valid"] << ", closed " << c["closed"]
+                << (solid ? ", volume " + c["volume"].dump() : "") << "\n";
+      ok = ok && c["relative_deviation"].get<double>() <= 1e-11 && c["valid"].get<bool>() &&
+           c["closed"].get<bool>() == solid;
+      if (solid) ok = ok && std::abs(c["volume"].get<double>() - *r.volume) <= 1e-6 * *r.volume;
+    }
+    std::cout << "OpenCASCADE " << qm::io::occt_version() << (ok ? ": exact\n" : ": FAILED\n");
+    return ok ? 0 : 1;
+  } catch (const qm::Error& e) {
+    std::cerr << "consumer: " << e.what() << "\n";
+    return e.exit_code();
+  }
 }

@@ -1,30 +1,29 @@
 // io/cli/commands.cpp
-#include "io/cli/commands.hpp"
-
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <qmotion/io/atomic_file.hpp>
+#include <qmotion/io/cli/commands.hpp>
+#include <qmotion/io/export.hpp>
+#include <qmotion/io/interpolate.hpp>
 #include <sstream>
-
-#include "io/atomic_file.hpp"
-#include "io/cli/geometry.hpp"
 #ifdef QMOTION_WITH_CGAL
-#include "io/exact_number.hpp"
+#include <qmotion/io/exact_number.hpp>
 #endif
-#include "io/json_number.hpp"
-#include "io/motion_json.hpp"
-#include "io/nurbs_json.hpp"
-#include "io/occt_info.hpp"
-#include "io/poses.hpp"
-#include "io/profiles.hpp"
-#include "kernel/error.hpp"
-#include "kernel/interpolation.hpp"
-#include "kernel/motion.hpp"
-#include "kernel/order.hpp"
-#include "kernel/parametrization.hpp"
-#include "kernel/spline_interpolation.hpp"
+#include <qmotion/io/json_number.hpp>
+#include <qmotion/io/motion_json.hpp>
+#include <qmotion/io/nurbs_json.hpp>
+#include <qmotion/io/occt_info.hpp>
+#include <qmotion/io/poses.hpp>
+#include <qmotion/io/profiles.hpp>
+#include <qmotion/kernel/error.hpp>
+#include <qmotion/kernel/interpolation.hpp>
+#include <qmotion/kernel/motion.hpp>
+#include <qmotion/kernel/order.hpp>
+#include <qmotion/kernel/parametrization.hpp>
+#include <qmotion/kernel/spline_interpolation.hpp>
 
 namespace qmotion::cli {
 namespace {
@@ -165,7 +164,7 @@ int cmd_eval(const std::string& path, const std::string& t_text, const std::stri
     throw Error(Errc::invalid_input, os.str());
   }
   const Eigen::Vector3d x =
-      point_text.empty() ? Eigen::Vector3d::Zero() : parse_point(point_text, "--point");
+      point_text.empty() ? Eigen::Vector3d::Zero() : io::parse_point(point_text, "--point");
   const auto q = kernel::evaluate(m, t);
   if (q.real().norm2() <= 1e-300)
     throw Error(Errc::numerical_failure,
@@ -186,247 +185,19 @@ int cmd_eval(const std::string& path, const std::string& t_text, const std::stri
   return 0;
 }
 
-struct InterpolateArgs {
-  std::string poses, output, rotation = "elliptic", translation = "tr", trt_degrees, param, form;
-  int degree = -1, translation_degree = -1;
-  bool exact = false;
-};
-
-template <typename Scalar>
-json numbers_json(const std::vector<Scalar>& t) {
-  json a = json::array();
-  for (const auto& v : t) {
-#ifdef QMOTION_WITH_CGAL
-    if constexpr (kernel::is_exact_v<Scalar>) {
-      a.push_back(io::exact_to_text(v));
-      continue;
-    }
-#endif
-    a.push_back(kernel::to_double(v));
-  }
-  return a;
-}
-
-template <typename Scalar>
-json run_interpolation(const std::vector<kernel::Pose<Scalar>>& poses, const std::vector<Scalar>& t,
-                       const kernel::InterpolationOptions& opt, json method,
-                       const std::string& units, std::string& summary) {
-  const auto r = kernel::interpolate_bezier(poses, t, opt);
-  method["parameters"] = numbers_json(t);
-  method["rotation_degree"] = r.k;
-  method["translation_degree"] =
-      opt.translation == kernel::TranslationMethod::trt ? json{r.l1, r.l2} : json(r.l1);
-  double worst = 0;
-  for (double x : r.residuals) worst = std::max(worst, x);
-  method["max_interpolation_residual"] = worst;
-  // The factors the motion is the product of, for exact minimal-degree trajectories.
-  json rot = json::array();
-  for (const auto& c : r.rotation.coeffs())
-    rot.push_back(numbers_json(std::vector<Scalar>{c.w(), c.x(), c.y(), c.z()}));
-  method["rotation_control_points"] = rot;
-  auto rows = [](const kernel::MatX<Scalar>& P) {
-    json a = json::array();
-    for (Eigen::Index j = 0; j < P.rows(); ++j)
-      a.push_back(numbers_json(std::vector<Scalar>{P(j, 0), P(j, 1), P(j, 2)}));
-    return a;
-  };
-  method["translation_control_points"] = rows(r.translation);
-  if (opt.translation == kernel::TranslationMethod::trt)
-    method["translation2_control_points"] = rows(r.translation2);
-  const auto poles = kernel::find_poles(r.motion);
-  if (!poles.empty()) {
+int cmd_interpolate(const std::string& poses_path, const std::string& output,
+                    const io::InterpolateOptions& opt) {
+  const io::PoseSet set = io::read_poses(poses_path);
+  const io::InterpolatedMotion r = io::interpolate(set, opt);
+  if (!r.poles.empty()) {
     std::ostringstream os;
     os.precision(10);
-    for (double p : poles) os << " " << p;
+    for (double p : r.poles) os << " " << p;
     std::cerr << "qmotion: warning: the motion has a pole (zero rotational part) at t =" << os.str()
               << ": trajectories are unbounded there and cannot be exported\n";
   }
-  std::ostringstream os;
-  os << "bezier, degree " << r.motion.degree() << ", order "
-     << kernel::construction_order(opt.translation, r.k, r.l1, std::max(r.l2, 0))
-     << ", max residual " << worst;
-  summary = os.str();
-  return io::motion_to_json(r.motion, method, units);
-}
-
-/// Rows of numbers for a spline's poles, and its knots, into the method record.
-template <typename Scalar, typename Coef, typename Row>
-void record_spline(json& method, const std::string& name, const kernel::BSpline<Coef>& s, Row row) {
-  json poles = json::array();
-  for (const auto& c : s.ctrl()) poles.push_back(numbers_json(row(c)));
-  method[name + "_control_points"] = poles;
-  method[name + "_knots"] = numbers_json(s.knots());
-}
-
-template <typename Scalar>
-json run_spline_interpolation(const std::vector<kernel::Pose<Scalar>>& poses,
-                              const std::vector<Scalar>& t, const std::string& form,
-                              const kernel::SplineOptions& sopt, json method,
-                              const std::string& units, std::string& summary) {
-  kernel::SplineInterpolation<Scalar> r = [&] {
-    if constexpr (kernel::is_exact_v<Scalar>) {
-      return kernel::interpolate_bspline(poses, t, sopt);
-    } else {
-      return form == "c1" ? kernel::interpolate_c1(poses, t, sopt.translation, sopt.max_residual)
-                          : kernel::interpolate_bspline(poses, t, sopt);
-    }
-  }();
-  method["parameters"] = numbers_json(t);
-  method["rotation_degree"] = r.k;
-  method["translation_degree"] = r.l;
-  double worst = 0;
-  for (double x : r.residuals) worst = std::max(worst, x);
-  method["max_interpolation_residual"] = worst;
-  using V3 = Eigen::Matrix<Scalar, 3, 1>;
-  record_spline<Scalar>(method, "rotation", r.factors.rotation,
-                        [](const kernel::Quaternion<Scalar>& q) {
-                          return std::vector<Scalar>{q.w(), q.x(), q.y(), q.z()};
-                        });
-  record_spline<Scalar>(method, "translation", r.factors.translation, [](const V3& v) {
-    return std::vector<Scalar>{v(0), v(1), v(2)};
-  });
-  std::ostringstream os;
-  os << form << ", degree " << r.motion.degree() << ", " << r.motion.segments()
-     << " segments, order " << kernel::construction_order(sopt.translation, r.k, r.l)
-     << ", max residual " << worst;
-  summary = os.str();
-  return io::motion_to_json(r.motion, method, units);
-}
-
-int cmd_interpolate(const InterpolateArgs& args) {
-  const io::PoseSet set = io::read_poses(args.poses);
-  const std::size_t count = set.poses.size();
-  kernel::InterpolationOptions opt;
-  if (args.rotation == "elliptic") {
-    opt.rotation = kernel::RotationMethod::elliptic;
-  } else if (args.rotation == "affine") {
-    opt.rotation = kernel::RotationMethod::affine;
-  } else if (args.rotation == "projective") {
-    opt.rotation = kernel::RotationMethod::projective;
-  } else {
-    throw Error(
-        Errc::invalid_input,
-        "--rotation: expected elliptic, affine or projective, found '" + args.rotation + "'");
-  }
-  if (args.translation == "tr") {
-    opt.translation = kernel::TranslationMethod::tr;
-  } else if (args.translation == "trt") {
-    opt.translation = kernel::TranslationMethod::trt;
-  } else if (args.translation == "minimal") {
-    opt.translation = kernel::TranslationMethod::minimal;
-  } else {
-    throw Error(Errc::invalid_input,
-                "--translation: expected tr, trt or minimal, found '" + args.translation + "'");
-  }
-  if (!args.trt_degrees.empty()) {
-    if (opt.translation != kernel::TranslationMethod::trt)
-      throw Error(Errc::invalid_input, "--trt-degrees needs --translation trt");
-    const auto comma = args.trt_degrees.find(',');
-    auto to_int = [&](const std::string& s) {
-      if (s.empty() || s.find_first_not_of("0123456789") != std::string::npos)
-        throw Error(Errc::invalid_input,
-                    "--trt-degrees: expected two non-negative integers L1,L2, found '" +
-                        args.trt_degrees + "'");
-      return std::stoi(s);
-    };
-    if (comma == std::string::npos)
-      throw Error(Errc::invalid_input,
-                  "--trt-degrees: expected L1,L2, found '" + args.trt_degrees + "'");
-    opt.trt_degrees = std::make_pair(to_int(args.trt_degrees.substr(0, comma)),
-                                     to_int(args.trt_degrees.substr(comma + 1)));
-  }
-  const std::string form = !args.form.empty() ? args.form : (count <= 6 ? "bezier" : "bspline");
-  if (form != "bezier" && form != "bspline" && form != "c1")
-    throw Error(Errc::invalid_input,
-                "--form: expected bezier, bspline or c1, found '" + form + "'");
-  const bool spline = form != "bezier";
-  const int m = static_cast<int>(count) - 1;
-  kernel::SplineOptions sopt;
-  sopt.translation = opt.translation;
-  if (spline) {
-    if (opt.rotation != kernel::RotationMethod::elliptic)
-      throw Error(Errc::invalid_input,
-                  "--form " + form + " interpolates rotations by the elliptic method; --rotation " +
-                      args.rotation + " is for --form bezier");
-    if (opt.translation == kernel::TranslationMethod::trt)
-      throw Error(
-          Errc::invalid_input,
-          "--form " + form + ": --translation trt is for --form bezier (use tr or minimal)");
-    if (form == "c1" && args.exact)
-      throw Error(Errc::invalid_input,
-                  "--form c1 estimates velocities with square roots and logarithms: no --exact");
-    if (form == "c1" && ((args.degree >= 0 && args.degree != 3) ||
-                         (args.translation_degree >= 0 && args.translation_degree != 3)))
-      throw Error(Errc::invalid_input,
-                  "--form c1 has cubic factors: --degree and --translation-degree are 3");
-    if (args.degree == 0 || args.translation_degree == 0 || args.degree > 25 ||
-        args.translation_degree > 25)
-      throw Error(Errc::invalid_input, "--degree and --translation-degree: expected 1 to 25");
-    if (args.degree > 0) sopt.k = args.degree;
-    if (args.translation_degree > 0) sopt.l = args.translation_degree;
-  } else {
-    if (args.degree >= 0 && args.degree != kernel::rotation_degree(opt.rotation, m))
-      throw Error(Errc::invalid_input,
-                  "--degree " + std::to_string(args.degree) + ": a Bezier motion through " +
-                      std::to_string(count) + " poses has rotational degree " +
-                      std::to_string(kernel::rotation_degree(opt.rotation, m)) +
-                      " with this method; --degree chooses the degree of B-spline motions");
-    if (args.translation_degree >= 0 && args.translation_degree != m &&
-        opt.translation != kernel::TranslationMethod::trt)
-      throw Error(Errc::invalid_input, "--translation-degree " +
-                                           std::to_string(args.translation_degree) +
-                                           ": a Bezier motion through " + std::to_string(count) +
-                                           " poses has translational degree " + std::to_string(m));
-  }
-  const std::string rule_name =
-      !args.param.empty() ? args.param : (set.has_t() ? "given" : "uniform");
-  const auto rule = kernel::param_rule_from_string(rule_name);
-  if (!rule)
-    throw Error(Errc::invalid_input,
-                "--param: expected given, uniform, chordal, star-chordal, centripetal, angular or "
-                "angular-chordal, found '" +
-                    rule_name + "'");
-  if (*rule == kernel::ParamRule::given && !set.has_t())
-    throw Error(
-        Errc::invalid_input,
-        args.poses +
-            ": --param given needs a t for every pose; the file has none (try --param uniform)");
-  const auto poses_d = io::to_poses_double(set);
-  const std::vector<double> t = kernel::parametrize(poses_d, *rule);
-
-  json method{{"rotation", args.rotation},
-              {"translation", args.translation},
-              {"param", kernel::to_string(*rule)},
-              {"form", form},
-              {"exact", args.exact},
-              {"input_poses", io::poses_to_json(set)}};
-  if (opt.translation == kernel::TranslationMethod::trt) {
-    const auto d = opt.trt_degrees.value_or(std::make_pair(m - 1, 0));
-    method["trt_degrees"] = {d.first, d.second};
-  }
-  std::string summary;
-  json doc;
-  if (args.exact) {
-#ifdef QMOTION_WITH_CGAL
-    const auto poses_e = io::to_poses_exact(set);
-    std::vector<kernel::Rational> te;
-    for (std::size_t i = 0; i < count; ++i)
-      te.push_back(*rule == kernel::ParamRule::given ? *poses_e[i].t : kernel::Rational(t[i]));
-    if (*rule == kernel::ParamRule::uniform)
-      for (std::size_t i = 0; i < count; ++i)
-        te[i] = kernel::Rational(static_cast<long>(i)) / kernel::Rational(static_cast<long>(m));
-    doc = spline ? run_spline_interpolation(poses_e, te, form, sopt, method, set.units, summary)
-                 : run_interpolation(poses_e, te, opt, method, set.units, summary);
-#else
-    throw Error(Errc::invalid_input,
-                "--exact: this build has no exact arithmetic (QMOTION_WITH_CGAL=OFF)");
-#endif
-  } else {
-    doc = spline ? run_spline_interpolation(poses_d, t, form, sopt, method, set.units, summary)
-                 : run_interpolation(poses_d, t, opt, method, set.units, summary);
-  }
-  io::write_file_atomic(args.output, doc.dump(1) + "\n");
-  std::cerr << "qmotion: wrote " << args.output << " (" << summary << ")\n";
+  io::write_file_atomic(output, r.document.dump(1) + "\n");
+  std::cerr << "qmotion: wrote " << output << " (" << r.summary << ")\n";
   return 0;
 }
 
@@ -455,7 +226,7 @@ constexpr const char* kDemoPoses = R"({"units":"mm","poses":[
  {"t":1.0,"position":[120,100,0],"rotation":{"axis_angle":{"axis":[0,1,1],"angle_deg":150}}}]})";
 
 /// An isometric SVG of the trajectories and of the profile at nine instants.
-std::string demo_svg(const LoadedMotion& lm, const sweep::NurbsCurve<double>& profile) {
+std::string demo_svg(const io::LoadedMotion& lm, const sweep::NurbsCurve<double>& profile) {
   auto proj = [](const Eigen::Vector3d& p) {
     return Eigen::Vector2d((p.x() - p.y()) * 0.8660254037844386, -(p.x() + p.y()) * 0.5 - p.z());
   };
@@ -522,16 +293,13 @@ int cmd_demo(const std::string& dir) {
   } cleanup{tmp};
 
   const io::PoseSet set = io::parse_poses_json(kDemoPoses, "embedded demo poses");
-  const auto poses = io::to_poses_double(set);
-  const auto t = kernel::parametrize(poses, kernel::ParamRule::given);
-  kernel::InterpolationOptions opt;  // elliptic + TR (Algorithm 1)
-  json method{{"rotation", "elliptic"}, {"translation", "tr"},
-              {"param", "given"},       {"form", "bezier"},
-              {"exact", false},         {"input_poses", io::poses_to_json(set)}};
-  std::string summary;
-  const json motion_doc = run_interpolation(poses, t, opt, method, set.units, summary);
+  io::InterpolateOptions opt;  // elliptic + TR (Algorithm 1), the poses' own t
+  opt.form = "bezier";
+  const io::InterpolatedMotion interpolated = io::interpolate(set, opt);
+  const json& motion_doc = interpolated.document;
+  const std::string& summary = interpolated.summary;
   io::write_file_atomic((tmp / "motion.json").string(), motion_doc.dump(1) + "\n");
-  const LoadedMotion lm = load_motion(io::parse_motion(motion_doc, "motion.json"));
+  const io::LoadedMotion lm = io::load_motion(io::parse_motion(motion_doc, "motion.json"));
   // The paper's Figure 5 idea: a parabola of the moving space swept by the motion.
   const sweep::NurbsCurve<double> parabola{
       2, {0, 0, 0, 1, 1, 1}, {{-10, 0, 10}, {0, 0, -10}, {10, 0, 10}}, {1, 1, 1}};
@@ -543,18 +311,18 @@ int cmd_demo(const std::string& dir) {
     for (const auto& [name, point] :
          {std::make_pair(std::string("trajectory_origin"), Eigen::Vector3d(0, 0, 0)),
           std::make_pair(std::string("trajectory_0_0_1"), Eigen::Vector3d(0, 0, 1))}) {
-      GeometryOptions go;
+      io::ExportOptions go;
       go.output = (tmp / (name + ext)).string();
-      const auto r = export_trajectory(lm, point, go);
-      json c = check_geometry(go.output, lm, std::nullopt, point);
+      const auto r = io::export_trajectory(lm, point, go);
+      json c = io::check_geometry(go.output, lm, std::nullopt, point);
       c["file"] = name + ext;
       c["degree"] = r.degree_u;
       report.push_back(c);
     }
-    GeometryOptions go;
+    io::ExportOptions go;
     go.output = (tmp / ("surface_parabola" + ext)).string();
-    export_surface(lm, sweep::single_edge(parabola), "a parabola", go);
-    json c = check_geometry(go.output, lm, sweep::single_edge(parabola), std::nullopt);
+    io::export_surface(lm, sweep::single_edge(parabola), "a parabola", go);
+    json c = io::check_geometry(go.output, lm, sweep::single_edge(parabola), std::nullopt);
     c["file"] = "surface_parabola" + ext;
     report.push_back(c);
   }
@@ -607,9 +375,10 @@ int run(int argc, char** argv) {
   auto* interp = app.add_subcommand(
       "interpolate",
       "Build a Q-motion through the poses (Juettler's methods) and write it as motion JSON");
-  InterpolateArgs ia;
-  interp->add_option("POSES", ia.poses, "Pose file (.json or .csv)")->required();
-  interp->add_option("-o,--output", ia.output, "Motion JSON file to write")->required();
+  io::InterpolateOptions ia;
+  std::string ia_poses, ia_output;
+  interp->add_option("POSES", ia_poses, "Pose file (.json or .csv)")->required();
+  interp->add_option("-o,--output", ia_output, "Motion JSON file to write")->required();
   interp->add_option("--rotation", ia.rotation,
                      "Rotation interpolation: elliptic (default), affine, projective (the last two "
                      "for --form bezier)");
@@ -643,7 +412,7 @@ int run(int argc, char** argv) {
   auto* traj = app.add_subcommand(
       "trajectory", "Write the exact rational trajectory of a point as NURBS (JSON, STEP or IGES)");
   std::string traj_motion, traj_point;
-  GeometryOptions traj_opt;
+  io::ExportOptions traj_opt;
   traj->add_option("MOTION", traj_motion, "Motion JSON file")->required();
   traj->add_option("--point", traj_point, "Point x,y,z of the moving space")->required();
   traj->add_option("-o,--output", traj_opt.output, "Output .json, .step/.stp or .igs/.iges")
@@ -661,7 +430,7 @@ int run(int argc, char** argv) {
       "sweep",
       "Write the kinematic surface M(t) x(v) of a profile as NURBS (JSON, STEP, IGES; STL mesh)");
   std::string swp_motion, swp_profile;
-  GeometryOptions swp_opt;
+  io::ExportOptions swp_opt;
   swp->add_option("MOTION", swp_motion, "Motion JSON file")->required();
   swp->add_option("--profile", swp_profile,
                   "Profile: nurbs_curve .json (or an array of them), .step/.igs (the first "
@@ -717,11 +486,11 @@ int run(int argc, char** argv) {
   }
   if (*info) return cmd_info(info_path, info_exact);
   if (*eval) return cmd_eval(eval_path, eval_t, eval_point);
-  if (*interp) return cmd_interpolate(ia);
+  if (*interp) return cmd_interpolate(ia_poses, ia_output, ia);
   if (*poses) return cmd_poses(poses_path, poses_out);
   if (*traj) {
-    const auto r =
-        export_trajectory(load_motion(traj_motion), parse_point(traj_point, "--point"), traj_opt);
+    const auto r = io::export_trajectory(io::load_motion(traj_motion),
+                                         io::parse_point(traj_point, "--point"), traj_opt);
     std::cerr << "qmotion: wrote " << r.path << " (degree " << r.degree_u << ", C" << r.continuity_u
               << ", " << r.poles << " poles, " << r.units << ", " << r.inserted_knots
               << " knots inserted for positive weights"
@@ -732,9 +501,9 @@ int run(int argc, char** argv) {
     return 0;
   }
   if (*swp) {
-    const LoadedMotion lm = load_motion(swp_motion);
+    const io::LoadedMotion lm = io::load_motion(swp_motion);
     const auto profile = io::read_profile(swp_profile, lm.file.units);
-    const auto r = export_surface(lm, profile, swp_profile, swp_opt);
+    const auto r = io::export_surface(lm, profile, swp_profile, swp_opt);
     std::cerr << "qmotion: wrote " << r.path << " (degrees " << r.degree_u << " x " << r.degree_v
               << ", C" << r.continuity_u << " x C" << r.continuity_v << ", " << r.faces
               << (r.faces == 1 ? " face, " : " faces, ") << r.poles << " poles, " << r.units
@@ -748,14 +517,14 @@ int run(int argc, char** argv) {
   if (*chk) {
     if (chk_profile.empty() == chk_point.empty())
       throw Error(Errc::invalid_input, "check: give exactly one of --profile and --point");
-    const LoadedMotion lm = load_motion(chk_motion);
+    const io::LoadedMotion lm = io::load_motion(chk_motion);
     std::optional<sweep::Profile<double>> profile;
     std::optional<Eigen::Vector3d> point;
     if (!chk_profile.empty()) profile = io::read_profile(chk_profile, lm.file.units);
-    if (!chk_point.empty()) point = parse_point(chk_point, "--point");
+    if (!chk_point.empty()) point = io::parse_point(chk_point, "--point");
     if (chk_grid < 1 || chk_grid > 1000)
       throw Error(Errc::invalid_input, "--grid: expected 1 to 1000");
-    std::cout << check_geometry(chk_file, lm, profile, point, chk_grid).dump(2) << "\n";
+    std::cout << io::check_geometry(chk_file, lm, profile, point, chk_grid).dump(2) << "\n";
     return 0;
   }
   if (*demo) return cmd_demo(demo_dir);

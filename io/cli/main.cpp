@@ -1,9 +1,8 @@
 // io/cli/main.cpp: the qmotion executable.
 #include <exception>
 #include <iostream>
-
-#include "io/cli/commands.hpp"
-#include "kernel/error.hpp"
+#include <qmotion/io/cli/commands.hpp>
+#include <qmotion/kernel/error.hpp>
 
 int main(int argc, char** argv) {
   try {

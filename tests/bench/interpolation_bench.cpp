@@ -2,9 +2,8 @@
 // rotation x translation method (Bezier motions, double).
 #include <benchmark/benchmark.h>
 
+#include <qmotion/kernel/interpolation.hpp>
 #include <random>
-
-#include "kernel/interpolation.hpp"
 
 namespace {
 using namespace qmotion::kernel;

@@ -1,9 +1,8 @@
 // tests/bench/kernel_bench.cpp: cost of the kernel's building blocks (Google Benchmark).
 #include <benchmark/benchmark.h>
 
+#include <qmotion/kernel/motion.hpp>
 #include <random>
-
-#include "kernel/motion.hpp"
 
 namespace {
 using namespace qmotion::kernel;

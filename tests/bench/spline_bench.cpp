@@ -2,11 +2,10 @@
 // growth, 10^4 poses under 50 ms) and the kinematic surface of a 10^3-pose motion.
 #include <benchmark/benchmark.h>
 
+#include <qmotion/kernel/spline_interpolation.hpp>
+#include <qmotion/sweep/profiles.hpp>
+#include <qmotion/sweep/surface.hpp>
 #include <random>
-
-#include "kernel/spline_interpolation.hpp"
-#include "sweep/profiles.hpp"
-#include "sweep/surface.hpp"
 
 namespace {
 using namespace qmotion;

@@ -5,13 +5,12 @@
 
 #include <filesystem>
 #include <fstream>
-
-#include "io/json_number.hpp"
-#include "io/motion_json.hpp"
-#include "io/occt.hpp"
-#include "io/poses.hpp"
-#include "kernel/parametrization.hpp"
-#include "sweep/surface.hpp"
+#include <qmotion/io/json_number.hpp>
+#include <qmotion/io/motion_json.hpp>
+#include <qmotion/io/occt.hpp>
+#include <qmotion/io/poses.hpp>
+#include <qmotion/kernel/parametrization.hpp>
+#include <qmotion/sweep/surface.hpp>
 
 // OpenCASCADE after CGAL: its `Handle` macro breaks CGAL headers included after it.
 // clang-format off

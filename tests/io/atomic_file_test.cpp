@@ -1,10 +1,9 @@
 // tests/io/atomic_file_test.cpp mirrors io/atomic_file.hpp
-#include "io/atomic_file.hpp"
-
 #include <filesystem>
 #include <fstream>
+#include <qmotion/io/atomic_file.hpp>
+#include <qmotion/io/json_number.hpp>
 
-#include "io/json_number.hpp"
 #include "io_test_util.hpp"
 
 namespace qmotion::test {

@@ -1,7 +1,7 @@
 // tests/io/json_number_test.cpp mirrors io/json_number.hpp
-#include "io/json_number.hpp"
+#include <qmotion/io/exact_number.hpp>
+#include <qmotion/io/json_number.hpp>
 
-#include "io/exact_number.hpp"
 #include "io_test_util.hpp"
 
 namespace qmotion::test {

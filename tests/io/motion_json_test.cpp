@@ -1,7 +1,7 @@
 // tests/io/motion_json_test.cpp mirrors io/motion_json.hpp
-#include "io/motion_json.hpp"
+#include <qmotion/io/exact_number.hpp>
+#include <qmotion/io/motion_json.hpp>
 
-#include "io/exact_number.hpp"
 #include "io_test_util.hpp"
 
 namespace qmotion::test {

@@ -1,7 +1,7 @@
 // tests/io/nurbs_json_test.cpp mirrors io/nurbs_json.hpp
-#include "io/nurbs_json.hpp"
+#include <qmotion/io/json_number.hpp>
+#include <qmotion/io/nurbs_json.hpp>
 
-#include "io/json_number.hpp"
 #include "io_test_util.hpp"
 
 namespace qmotion::test {

@@ -1,15 +1,14 @@
 // tests/io/occt_test.cpp mirrors io/occt.hpp: STEP/IGES written and read back through
 // OpenCASCADE, bit for bit.
-#include "io/occt.hpp"
-
 #include <filesystem>
+#include <qmotion/io/json_number.hpp>
+#include <qmotion/io/occt.hpp>
+#include <qmotion/io/profiles.hpp>
+#include <qmotion/sweep/profiles.hpp>
+#include <qmotion/sweep/surface.hpp>
 #include <random>
 
-#include "io/json_number.hpp"
-#include "io/profiles.hpp"
 #include "io_test_util.hpp"
-#include "sweep/profiles.hpp"
-#include "sweep/surface.hpp"
 
 namespace qmotion::test {
 namespace {

@@ -1,9 +1,8 @@
 // tests/io/poses_test.cpp mirrors io/poses.hpp
-#include "io/poses.hpp"
-
 #include <cmath>
+#include <qmotion/io/exact_number.hpp>
+#include <qmotion/io/poses.hpp>
 
-#include "io/exact_number.hpp"
 #include "io_test_util.hpp"
 
 namespace qmotion::test {

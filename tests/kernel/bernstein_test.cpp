@@ -1,5 +1,5 @@
 // tests/kernel/bernstein_test.cpp mirrors kernel/bernstein.hpp
-#include "kernel/bernstein.hpp"
+#include <qmotion/kernel/bernstein.hpp>
 
 #include "test_util.hpp"
 

@@ -1,5 +1,5 @@
 // tests/kernel/bspline_test.cpp mirrors kernel/bspline.hpp
-#include "kernel/bspline.hpp"
+#include <qmotion/kernel/bspline.hpp>
 
 #include "test_util.hpp"
 

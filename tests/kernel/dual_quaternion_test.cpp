@@ -1,5 +1,5 @@
 // tests/kernel/dual_quaternion_test.cpp mirrors kernel/dual_quaternion.hpp
-#include "kernel/dual_quaternion.hpp"
+#include <qmotion/kernel/dual_quaternion.hpp>
 
 #include "test_util.hpp"
 

@@ -1,8 +1,9 @@
 // tests/kernel/instantiate_test.cpp: every class template of the kernel instantiated
 // explicitly for double and CGAL::Exact_rational, so members no test calls still compile.
-#include "kernel/bernstein.hpp"
-#include "kernel/bspline.hpp"
-#include "kernel/motion.hpp"
+#include <qmotion/kernel/bernstein.hpp>
+#include <qmotion/kernel/bspline.hpp>
+#include <qmotion/kernel/motion.hpp>
+
 #include "test_util.hpp"
 
 namespace qmotion::kernel {

@@ -1,15 +1,14 @@
 // tests/kernel/interpolation_test.cpp mirrors kernel/interpolation.hpp
-#include "kernel/interpolation.hpp"
-
 #include <algorithm>
 #include <cmath>
+#include <qmotion/io/exact_number.hpp>
+#include <qmotion/io/poses.hpp>
+#include <qmotion/kernel/interpolation.hpp>
+#include <qmotion/kernel/order.hpp>
+#include <qmotion/kernel/parametrization.hpp>
 #include <random>
 
-#include "io/exact_number.hpp"
-#include "io/poses.hpp"
 #include "io_test_util.hpp"
-#include "kernel/order.hpp"
-#include "kernel/parametrization.hpp"
 #include "test_util.hpp"
 
 namespace qmotion::test {

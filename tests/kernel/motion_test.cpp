@@ -1,5 +1,5 @@
 // tests/kernel/motion_test.cpp mirrors kernel/motion.hpp
-#include "kernel/motion.hpp"
+#include <qmotion/kernel/motion.hpp>
 
 #include "test_util.hpp"
 

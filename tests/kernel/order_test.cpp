@@ -1,5 +1,5 @@
 // tests/kernel/order_test.cpp mirrors kernel/order.hpp
-#include "kernel/order.hpp"
+#include <qmotion/kernel/order.hpp>
 
 #include "test_util.hpp"
 

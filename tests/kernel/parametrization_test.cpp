@@ -1,7 +1,6 @@
 // tests/kernel/parametrization_test.cpp mirrors kernel/parametrization.hpp
-#include "kernel/parametrization.hpp"
-
 #include <cmath>
+#include <qmotion/kernel/parametrization.hpp>
 
 #include "io_test_util.hpp"
 #include "test_util.hpp"

@@ -1,7 +1,6 @@
 // tests/kernel/quaternion_test.cpp mirrors kernel/quaternion.hpp
-#include "kernel/quaternion.hpp"
-
 #include <cmath>
+#include <qmotion/kernel/quaternion.hpp>
 
 #include "test_util.hpp"
 

@@ -1,13 +1,12 @@
 // tests/kernel/spline_interpolation_test.cpp mirrors kernel/spline_interpolation.hpp
-#include "kernel/spline_interpolation.hpp"
-
+#include <qmotion/io/poses.hpp>
+#include <qmotion/kernel/banded.hpp>
+#include <qmotion/kernel/spline_interpolation.hpp>
+#include <qmotion/sweep/profiles.hpp>
+#include <qmotion/sweep/surface.hpp>
 #include <random>
 
-#include "io/poses.hpp"
 #include "io_test_util.hpp"
-#include "kernel/banded.hpp"
-#include "sweep/profiles.hpp"
-#include "sweep/surface.hpp"
 #include "test_util.hpp"
 
 namespace qmotion::test {

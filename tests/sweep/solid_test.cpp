@@ -1,16 +1,15 @@
 // tests/sweep/solid_test.cpp mirrors sweep/shell.hpp and sweep/solid.hpp
-#include "sweep/solid.hpp"
-
 #include <cmath>
+#include <qmotion/io/poses.hpp>
+#include <qmotion/kernel/parametrization.hpp>
+#include <qmotion/sweep/factors.hpp>
+#include <qmotion/sweep/profiles.hpp>
+#include <qmotion/sweep/shell.hpp>
+#include <qmotion/sweep/solid.hpp>
+#include <qmotion/sweep/surface.hpp>
 #include <random>
 
-#include "io/poses.hpp"
 #include "io_test_util.hpp"
-#include "kernel/parametrization.hpp"
-#include "sweep/factors.hpp"
-#include "sweep/profiles.hpp"
-#include "sweep/shell.hpp"
-#include "sweep/surface.hpp"
 
 namespace qmotion::test {
 namespace {

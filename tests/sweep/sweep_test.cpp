@@ -1,15 +1,15 @@
 // tests/sweep/sweep_test.cpp mirrors sweep/trajectory.hpp, sweep/surface.hpp,
 // sweep/weights.hpp, sweep/profiles.hpp, sweep/approximate.hpp
 #include <cmath>
+#include <qmotion/io/nurbs_json.hpp>
+#include <qmotion/io/poses.hpp>
+#include <qmotion/kernel/parametrization.hpp>
+#include <qmotion/sweep/approximate.hpp>
+#include <qmotion/sweep/profiles.hpp>
+#include <qmotion/sweep/surface.hpp>
 #include <random>
 
-#include "io/nurbs_json.hpp"
-#include "io/poses.hpp"
 #include "io_test_util.hpp"
-#include "kernel/parametrization.hpp"
-#include "sweep/approximate.hpp"
-#include "sweep/profiles.hpp"
-#include "sweep/surface.hpp"
 #include "test_util.hpp"
 
 namespace qmotion::test {

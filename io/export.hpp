@@ -1,29 +1,29 @@
-// io/cli/geometry.hpp: trajectories, kinematic surfaces and the exactness check, shared
-// by their commands and the demo.
+// io/export.hpp: the main job as library calls: exact (or degree-limited) trajectories and
+// kinematic surfaces written as JSON, STEP, IGES or STL, and the exactness check that
+// reads them back. The CLI commands and the demo call these.
 #pragma once
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <qmotion/io/motion_json.hpp>
+#include <qmotion/sweep/factors.hpp>
+#include <qmotion/sweep/nurbs.hpp>
+#include <qmotion/sweep/profiles.hpp>
 #include <string>
 
-#include "io/motion_json.hpp"
-#include "sweep/factors.hpp"
-#include "sweep/nurbs.hpp"
-#include "sweep/profiles.hpp"
-
-namespace qmotion::cli {
+namespace qmotion::io {
 
 /// A motion file with its double motion and, when recorded and consistent, its factors.
 struct LoadedMotion {
-  io::MotionFile file;
+  MotionFile file;
   kernel::QMotion<double> motion;
   std::optional<sweep::MotionFactors<double>> factors;
 };
 
 LoadedMotion load_motion(const std::string& path);
-LoadedMotion load_motion(const io::MotionFile& file);
+LoadedMotion load_motion(const MotionFile& file);
 
-struct GeometryOptions {
+struct ExportOptions {
   std::string output;        ///< .json, .step/.stp, .igs/.iges (surfaces also .stl)
   int max_degree = -1;       ///< approximate above this degree (-1: exact only)
   double tol = -1;           ///< approximation tolerance (absolute; default 1e-6 x diagonal)
@@ -48,9 +48,9 @@ struct ExportResult {
 };
 
 ExportResult export_trajectory(const LoadedMotion& lm, const Eigen::Vector3d& point,
-                               const GeometryOptions& opt);
+                               const ExportOptions& opt);
 ExportResult export_surface(const LoadedMotion& lm, const sweep::Profile<double>& profile,
-                            const std::string& profile_name, const GeometryOptions& opt);
+                            const std::string& profile_name, const ExportOptions& opt);
 
 /// The exactness check: the file's NURBS (read back through OpenCASCADE for STEP/IGES)
 /// against the motion applied to the profile (surfaces) or to the point (curves), on a
@@ -64,4 +64,4 @@ nlohmann::json check_geometry(const std::string& file, const LoadedMotion& lm,
 /// Parses "x,y,z" given to `flag`.
 Eigen::Vector3d parse_point(const std::string& text, const std::string& flag);
 
-}  // namespace qmotion::cli
+}  // namespace qmotion::io

@@ -1,26 +1,24 @@
-// io/cli/geometry.cpp
-#include "io/cli/geometry.hpp"
-
+// io/export.cpp
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <limits>
+#include <qmotion/io/atomic_file.hpp>
+#include <qmotion/io/export.hpp>
+#include <qmotion/io/json_number.hpp>
+#include <qmotion/io/nurbs_json.hpp>
+#include <qmotion/io/occt.hpp>
+#include <qmotion/io/units.hpp>
+#include <qmotion/kernel/error.hpp>
+#include <qmotion/sweep/approximate.hpp>
+#include <qmotion/sweep/shell.hpp>
+#include <qmotion/sweep/solid.hpp>
+#include <qmotion/sweep/surface.hpp>
 #include <random>
 #include <sstream>
 
-#include "io/atomic_file.hpp"
-#include "io/json_number.hpp"
-#include "io/nurbs_json.hpp"
-#include "io/occt.hpp"
-#include "io/units.hpp"
-#include "kernel/error.hpp"
-#include "sweep/approximate.hpp"
-#include "sweep/shell.hpp"
-#include "sweep/solid.hpp"
-#include "sweep/surface.hpp"
-
-namespace qmotion::cli {
+namespace qmotion::io {
 namespace {
 
 using json = nlohmann::json;
@@ -63,8 +61,8 @@ void refuse_poles(const LoadedMotion& lm) {
 }
 
 /// Refuses degrees above what the target stores, unless an approximation was asked for.
-void check_degree(int degree, const std::string& what, Format f, const GeometryOptions& opt) {
-  const int limit = io::occt_max_degree();
+void check_degree(int degree, const std::string& what, Format f, const ExportOptions& opt) {
+  const int limit = occt_max_degree();
   if ((f == Format::step || f == Format::iges) && degree > limit && opt.max_degree < 0)
     throw Error(Errc::numerical_failure,
                 what + " has degree " + std::to_string(degree) + ", above the " +
@@ -94,9 +92,8 @@ std::vector<Eigen::Vector3d> curve_samples(const kernel::BSpline<Eigen::Vector4d
   return s;
 }
 
-io::ExportInfo export_info(const LoadedMotion& lm, const GeometryOptions& opt,
-                           const std::string& what) {
-  io::ExportInfo info;
+ExportInfo export_info(const LoadedMotion& lm, const ExportOptions& opt, const std::string& what) {
+  ExportInfo info;
   info.units = opt.units.empty() ? lm.file.units : opt.units;
   info.product = "qmotion " + what;
   info.description =
@@ -118,13 +115,13 @@ void scale_points(sweep::NurbsSurface<double>& s, double k) {
 }
 
 /// The declared unit and the factor from the motion's unit into it (--units converts).
-void resolve_units(const LoadedMotion& lm, const GeometryOptions& opt, ExportResult& r) {
-  r.units = opt.units.empty() ? lm.file.units : io::canonical_unit(opt.units, "--units");
-  r.unit_factor = io::unit_factor(lm.file.units, r.units);
+void resolve_units(const LoadedMotion& lm, const ExportOptions& opt, ExportResult& r) {
+  r.units = opt.units.empty() ? lm.file.units : canonical_unit(opt.units, "--units");
+  r.unit_factor = unit_factor(lm.file.units, r.units);
 }
 
 /// The JSON record of an approximation (tolerance and deviation in the declared unit).
-json approximation_json(const GeometryOptions& opt, const ExportResult& r, double tol) {
+json approximation_json(const ExportOptions& opt, const ExportResult& r, double tol) {
   return json{{"max_degree", opt.max_degree},
               {"tolerance", tol * r.unit_factor},
               {"measured_deviation", *r.approx_deviation},
@@ -136,7 +133,7 @@ json approximation_json(const GeometryOptions& opt, const ExportResult& r, doubl
 /// unit; `tol_used` receives the approximation tolerance.
 sweep::NurbsSurface<double> edge_surface(const LoadedMotion& lm,
                                          const sweep::NurbsCurve<double>& profile,
-                                         const GeometryOptions& opt, Format f, ExportResult& r,
+                                         const ExportOptions& opt, Format f, ExportResult& r,
                                          double& tol_used) {
   if (opt.max_degree > 0) {
     std::vector<sweep::Vec4<double>> X;
@@ -222,7 +219,7 @@ void write_stl(const std::string& path, const std::vector<sweep::NurbsSurface<do
       }
   }
   os << "endsolid qmotion\n";
-  io::write_file_atomic(path, os.str());
+  write_file_atomic(path, os.str());
 }
 
 }  // namespace
@@ -231,22 +228,22 @@ Eigen::Vector3d parse_point(const std::string& text, const std::string& flag) {
   std::vector<double> v;
   std::stringstream ss(text);
   std::string cell;
-  while (std::getline(ss, cell, ',')) v.push_back(io::parse_number_text(cell, flag).value);
+  while (std::getline(ss, cell, ',')) v.push_back(parse_number_text(cell, flag).value);
   if (v.size() != 3)
     throw Error(Errc::invalid_input, flag + ": expected three numbers x,y,z, found '" + text + "'");
   return Eigen::Vector3d(v[0], v[1], v[2]);
 }
 
-LoadedMotion load_motion(const io::MotionFile& file) {
-  LoadedMotion lm{file, io::to_motion_double(file), std::nullopt};
-  lm.factors = io::factors_double(file, lm.motion);
+LoadedMotion load_motion(const MotionFile& file) {
+  LoadedMotion lm{file, to_motion_double(file), std::nullopt};
+  lm.factors = factors_double(file, lm.motion);
   return lm;
 }
 
-LoadedMotion load_motion(const std::string& path) { return load_motion(io::read_motion(path)); }
+LoadedMotion load_motion(const std::string& path) { return load_motion(read_motion(path)); }
 
 ExportResult export_trajectory(const LoadedMotion& lm, const Eigen::Vector3d& point,
-                               const GeometryOptions& opt) {
+                               const ExportOptions& opt) {
   const Format f = output_format(opt.output, false);
   refuse_poles(lm);
   ExportResult r;
@@ -281,18 +278,18 @@ ExportResult export_trajectory(const LoadedMotion& lm, const Eigen::Vector3d& po
   info.units = r.units;
   switch (f) {
     case Format::json: {
-      json doc = io::curve_to_json(c);
+      json doc = curve_to_json(c);
       doc["units"] = r.units;
       doc["continuity"] = r.continuity_u;
       if (r.approx_deviation) doc["approximation"] = approximation_json(opt, r, tol);
-      io::write_file_atomic(opt.output, doc.dump(1) + "\n");
+      write_file_atomic(opt.output, doc.dump(1) + "\n");
       break;
     }
     case Format::step:
-      io::write_step(opt.output, c, info);
+      write_step(opt.output, c, info);
       break;
     case Format::iges:
-      io::write_iges(opt.output, c, info);
+      write_iges(opt.output, c, info);
       break;
     case Format::stl:
       break;
@@ -301,14 +298,14 @@ ExportResult export_trajectory(const LoadedMotion& lm, const Eigen::Vector3d& po
 }
 
 ExportResult export_surface(const LoadedMotion& lm, const sweep::Profile<double>& profile,
-                            const std::string& profile_name, const GeometryOptions& opt) {
+                            const std::string& profile_name, const ExportOptions& opt) {
   const Format f = output_format(opt.output, true);
   refuse_poles(lm);
   ExportResult r;
   r.path = opt.output;
   resolve_units(lm, opt, r);
   if (f == Format::step || f == Format::iges)
-    for (const auto& e : profile.edges) check_degree(e.degree, "the profile", f, GeometryOptions{});
+    for (const auto& e : profile.edges) check_degree(e.degree, "the profile", f, ExportOptions{});
   if (opt.solid) {
     if (!profile.closed)
       throw Error(Errc::invalid_input, "--solid: the profile " + profile_name +
@@ -365,26 +362,26 @@ ExportResult export_surface(const LoadedMotion& lm, const sweep::Profile<double>
     case Format::json: {  // exact surfaces per edge (JSON readers handle C0 knots)
       json doc;
       if (one_surface) {
-        doc = io::surface_to_json(surfaces.front());
+        doc = surface_to_json(surfaces.front());
       } else {
         doc = json{{"type", "nurbs_shell"}, {"closed", opt.solid}, {"faces", json::array()}};
-        for (const auto& s : surfaces) doc["faces"].push_back(io::surface_to_json(s));
+        for (const auto& s : surfaces) doc["faces"].push_back(surface_to_json(s));
         if (opt.solid) doc["volume"] = *r.volume;
       }
       doc["units"] = r.units;
       doc["continuity"] = {r.continuity_u, r.continuity_v};
       if (r.approx_deviation) doc["approximation"] = approximation_json(opt, r, tol);
-      io::write_file_atomic(opt.output, doc.dump(1) + "\n");
+      write_file_atomic(opt.output, doc.dump(1) + "\n");
       r.faces = static_cast<int>(surfaces.size());
       for (const auto& s : surfaces)
         r.poles += static_cast<int>(s.points.size() * s.points.front().size());
       return r;
     }
     case Format::step:
-      io::write_step(opt.output, shell, info);
+      write_step(opt.output, shell, info);
       break;
     case Format::iges:
-      io::write_iges(opt.output, shell, info);
+      write_iges(opt.output, shell, info);
       break;
     case Format::stl:
       write_stl(opt.output, surfaces, 64);
@@ -442,22 +439,22 @@ json check_geometry(const std::string& file, const LoadedMotion& lm,
   std::string file_units = lm.file.units;
   json out{{"file", file}, {"kind", surface ? "surface" : "curve"}};
   if (e == ".json") {
-    const json doc = io::read_json_file(file);
+    const json doc = read_json_file(file);
     if (doc.is_object() && doc.contains("units") && doc["units"].is_string())
-      file_units = io::canonical_unit(doc["units"].get<std::string>(), file + ": units");
+      file_units = canonical_unit(doc["units"].get<std::string>(), file + ": units");
     if (surface) {
       if (doc.is_object() && doc.value("type", "") == "nurbs_shell") {
         if (!doc.contains("faces") || !doc["faces"].is_array() || doc["faces"].empty())
           throw Error(Errc::invalid_input, file + ": faces: expected an array of nurbs_surface");
         for (std::size_t k = 0; k < doc["faces"].size(); ++k)
           faces.push_back(check_face(
-              io::surface_from_json(doc["faces"][k], file + ": face " + std::to_string(k + 1)),
+              surface_from_json(doc["faces"][k], file + ": face " + std::to_string(k + 1)),
               nullptr));
       } else {
-        faces.push_back(check_face(io::surface_from_json(doc, file), nullptr));
+        faces.push_back(check_face(surface_from_json(doc, file), nullptr));
       }
     } else {
-      const auto c = io::curve_from_json(doc, file);
+      const auto c = curve_from_json(doc, file);
       CheckFace cf{c.knots.front(), c.knots.back(), 0, 0,
                    [c](double t, double) { return sweep::evaluate(c, t); }};
       for (double w : c.weights) cf.weights_positive = cf.weights_positive && w > 0;
@@ -468,7 +465,7 @@ json check_geometry(const std::string& file, const LoadedMotion& lm,
   } else {
     // Read in the motion's unit (OpenCASCADE converts); deviations are reported in the
     // unit the file declares.
-    const io::CadGeometry g = io::read_cad(file, surface, lm.file.units);
+    const CadGeometry g = read_cad(file, surface, lm.file.units);
     if (surface) {
       for (const auto& cf : g.face_list) {
         if (cf.is_plane) {
@@ -493,12 +490,12 @@ json check_geometry(const std::string& file, const LoadedMotion& lm,
     out["file_units"] = g.file_units;
     file_units = cad_unit(g.file_units, lm.file.units);
     if (g.solids > 0)
-      out["volume"] = g.volume * std::pow(io::unit_factor(lm.file.units, file_units), 3);
+      out["volume"] = g.volume * std::pow(unit_factor(lm.file.units, file_units), 3);
   }
   // The file's numbers are in file_units; the motion's in lm.file.units. For STEP/IGES the
   // reader already converted into the motion's unit: scale only the reported deviation.
   const bool cad = e != ".json";
-  const double k = io::unit_factor(lm.file.units, file_units);
+  const double k = unit_factor(lm.file.units, file_units);
   const double a = lm.motion.a(), b = lm.motion.b();
   std::mt19937 rng(20261122);
   double dev = 0, u_lo = faces.front().u0, u_hi = faces.front().u1;
@@ -580,4 +577,4 @@ json check_geometry(const std::string& file, const LoadedMotion& lm,
   return out;
 }
 
-}  // namespace qmotion::cli
+}  // namespace qmotion::io

@@ -1,0 +1,41 @@
+// io/interpolate.hpp: poses -> a motion file's document, with every option of the CLI's
+// `interpolate` (the library call behind it).
+#pragma once
+#include <nlohmann/json.hpp>
+#include <qmotion/io/motion_json.hpp>
+#include <qmotion/io/poses.hpp>
+#include <string>
+#include <vector>
+
+namespace qmotion::io {
+
+/// The options of `qmotion interpolate`, by their CLI names (SPEC §6). Empty strings and
+/// negative degrees take the defaults: elliptic + TR, `--param given` when every pose has
+/// t (else uniform), Bezier up to six poses and B-spline beyond, cubic spline factors.
+struct InterpolateOptions {
+  std::string rotation = "elliptic";  ///< elliptic, affine, projective
+  std::string translation = "tr";     ///< tr, trt, minimal
+  std::string trt_degrees;            ///< "L1,L2" (TRT)
+  std::string param;                  ///< given, uniform, chordal, star-chordal, ...
+  std::string form;                   ///< bezier, bspline, c1
+  int degree = -1;                    ///< B-spline rotational degree K
+  int translation_degree = -1;        ///< B-spline translational degree L
+  bool exact = false;                 ///< CGAL::Exact_rational (quaternion rotations)
+};
+
+/// A new motion: its file document (SPEC §5: the curve, the factors it is the product
+/// of, the method with the input poses), a one-line summary, and the poles on its interval
+/// (zeros of the rotational part; trajectories cannot be exported through them).
+struct InterpolatedMotion {
+  nlohmann::json document;
+  std::string summary;
+  std::vector<double> poles;
+};
+
+/// A Q-motion through the poses (Jüttler 1994; SPEC §2). Throws Errc::invalid_input for
+/// bad options (naming the option, as the CLI does) and Errc::numerical_failure for
+/// refused systems. `parse_motion(result.document, name)` and `load_motion` turn the
+/// document into the motion the export calls take.
+InterpolatedMotion interpolate(const PoseSet& poses, const InterpolateOptions& options);
+
+}  // namespace qmotion::io

@@ -1,0 +1,28 @@
+// <qmotion/qmotion.hpp>: everything a user needs for the whole job, in one include.
+// Poses -> motion (kernel) -> trajectories and kinematic surfaces (sweep) -> JSON, STEP,
+// IGES and the exactness check (io). Namespaces: qmotion::kernel, qmotion::sweep,
+// qmotion::io.
+#pragma once
+
+#include <qmotion/io/export.hpp>
+#include <qmotion/io/interpolate.hpp>
+#include <qmotion/io/motion_json.hpp>
+#include <qmotion/io/nurbs_json.hpp>
+#include <qmotion/io/occt.hpp>
+#include <qmotion/io/occt_info.hpp>
+#include <qmotion/io/poses.hpp>
+#include <qmotion/io/profiles.hpp>
+#include <qmotion/io/units.hpp>
+#include <qmotion/kernel/dual_quaternion.hpp>
+#include <qmotion/kernel/error.hpp>
+#include <qmotion/kernel/interpolation.hpp>
+#include <qmotion/kernel/motion.hpp>
+#include <qmotion/kernel/parametrization.hpp>
+#include <qmotion/kernel/quaternion.hpp>
+#include <qmotion/kernel/spline_interpolation.hpp>
+#include <qmotion/sweep/factors.hpp>
+#include <qmotion/sweep/profiles.hpp>
+#include <qmotion/sweep/shell.hpp>
+#include <qmotion/sweep/solid.hpp>
+#include <qmotion/sweep/surface.hpp>
+#include <qmotion/sweep/trajectory.hpp>
