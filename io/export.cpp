@@ -242,12 +242,13 @@ LoadedMotion load_motion(const MotionFile& file) {
 
 LoadedMotion load_motion(const std::string& path) { return load_motion(read_motion(path)); }
 
-ExportResult export_trajectory(const LoadedMotion& lm, const Eigen::Vector3d& point,
-                               const ExportOptions& opt) {
-  const Format f = output_format(opt.output, false);
+namespace {
+
+/// The trajectory NURBS in the declared unit, filling r; f decides the degree limit.
+sweep::NurbsCurve<double> compute_trajectory(const LoadedMotion& lm, const Eigen::Vector3d& point,
+                                             const ExportOptions& opt, Format f, ExportResult& r,
+                                             double& tol) {
   refuse_poles(lm);
-  ExportResult r;
-  r.path = opt.output;
   resolve_units(lm, opt, r);
   const auto h0 = lm.factors
                       ? sweep::trajectory_from_factors(
@@ -255,7 +256,6 @@ ExportResult export_trajectory(const LoadedMotion& lm, const Eigen::Vector3d& po
                       : sweep::trajectory_from_motion(
                             lm.motion, sweep::Vec4<double>(1, point(0), point(1), point(2)));
   auto h = h0;
-  double tol = 0;
   if (opt.max_degree > 0 && h.degree() > opt.max_degree) {
     tol = opt.tol > 0 ? opt.tol : 1e-6 * std::max(diagonal(curve_samples(h0, 200)), 1e-300);
     const auto approx = sweep::approximate_homogeneous({h0}, opt.max_degree, tol);
@@ -273,6 +273,27 @@ ExportResult export_trajectory(const LoadedMotion& lm, const Eigen::Vector3d& po
   r.continuity_u = sweep::min_continuity(c.knots, c.degree);
   r.poles = static_cast<int>(c.points.size());
   r.min_weight = min_weight(c.weights);
+  return c;
+}
+
+}  // namespace
+
+sweep::NurbsCurve<double> trajectory_nurbs(const LoadedMotion& lm, const Eigen::Vector3d& point,
+                                           const ExportOptions& opt, ExportResult* result) {
+  ExportResult r;
+  double tol = 0;
+  auto c = compute_trajectory(lm, point, opt, Format::json, r, tol);
+  if (result) *result = r;
+  return c;
+}
+
+ExportResult export_trajectory(const LoadedMotion& lm, const Eigen::Vector3d& point,
+                               const ExportOptions& opt) {
+  const Format f = output_format(opt.output, false);
+  ExportResult r;
+  r.path = opt.output;
+  double tol = 0;
+  const auto c = compute_trajectory(lm, point, opt, f, r, tol);
   auto info = export_info(
       lm, opt, "trajectory of (" + fmt(point(0)) + "," + fmt(point(1)) + "," + fmt(point(2)) + ")");
   info.units = r.units;
@@ -297,12 +318,16 @@ ExportResult export_trajectory(const LoadedMotion& lm, const Eigen::Vector3d& po
   return r;
 }
 
-ExportResult export_surface(const LoadedMotion& lm, const sweep::Profile<double>& profile,
-                            const std::string& profile_name, const ExportOptions& opt) {
-  const Format f = output_format(opt.output, true);
+namespace {
+
+/// The surfaces of the profile's edges in the declared unit, filling r (with the solid's
+/// checks and volume for opt.solid); f decides the degree limit.
+std::vector<sweep::NurbsSurface<double>> compute_surfaces(const LoadedMotion& lm,
+                                                          const sweep::Profile<double>& profile,
+                                                          const std::string& profile_name,
+                                                          const ExportOptions& opt, Format f,
+                                                          ExportResult& r, double& tol) {
   refuse_poles(lm);
-  ExportResult r;
-  r.path = opt.output;
   resolve_units(lm, opt, r);
   if (f == Format::step || f == Format::iges)
     for (const auto& e : profile.edges) check_degree(e.degree, "the profile", f, ExportOptions{});
@@ -324,12 +349,48 @@ ExportResult export_surface(const LoadedMotion& lm, const sweep::Profile<double>
     r.volume = sweep::swept_volume(lm.motion, region) * std::pow(r.unit_factor, 3);
   }
   std::vector<sweep::NurbsSurface<double>> surfaces;
-  double tol = 0;
   for (const auto& e : profile.edges) {
     surfaces.push_back(edge_surface(lm, e, opt, f, r, tol));
     scale_points(surfaces.back(), r.unit_factor);
   }
   if (r.approx_deviation) *r.approx_deviation *= r.unit_factor;
+  r.degree_u = surfaces.front().degree_u;
+  r.degree_v = surfaces.front().degree_v;
+  r.continuity_u = r.degree_u;
+  r.continuity_v = r.degree_v;
+  r.min_weight = 1.0;
+  for (const auto& s : surfaces) {
+    r.degree_v = std::max(r.degree_v, s.degree_v);
+    r.continuity_u = std::min(r.continuity_u, sweep::min_continuity(s.knots_u, s.degree_u));
+    r.continuity_v = std::min(r.continuity_v, sweep::min_continuity(s.knots_v, s.degree_v));
+    for (const auto& row : s.weights) r.min_weight = std::min(r.min_weight, min_weight(row));
+  }
+  if (surfaces.size() > 1) r.continuity_v = std::min(r.continuity_v, 0);  // edges meet at C0
+  return surfaces;
+}
+
+}  // namespace
+
+std::vector<sweep::NurbsSurface<double>> sweep_nurbs(const LoadedMotion& lm,
+                                                     const sweep::Profile<double>& profile,
+                                                     const ExportOptions& opt,
+                                                     ExportResult* result) {
+  ExportResult r;
+  double tol = 0;
+  auto s = compute_surfaces(lm, profile, "the profile", opt, Format::json, r, tol);
+  r.faces = static_cast<int>(s.size());
+  for (const auto& f : s) r.poles += static_cast<int>(f.points.size() * f.points.front().size());
+  if (result) *result = r;
+  return s;
+}
+
+ExportResult export_surface(const LoadedMotion& lm, const sweep::Profile<double>& profile,
+                            const std::string& profile_name, const ExportOptions& opt) {
+  const Format f = output_format(opt.output, true);
+  ExportResult r;
+  r.path = opt.output;
+  double tol = 0;
+  const auto surfaces = compute_surfaces(lm, profile, profile_name, opt, f, r, tol);
   sweep::NurbsShell<double> shell;
   for (const auto& s : surfaces) {
     if (opt.single_face) {
@@ -343,18 +404,6 @@ ExportResult export_surface(const LoadedMotion& lm, const sweep::Profile<double>
     }
   }
   shell.closed = opt.solid;
-  r.degree_u = surfaces.front().degree_u;
-  r.degree_v = surfaces.front().degree_v;
-  r.continuity_u = r.degree_u;
-  r.continuity_v = r.degree_v;
-  r.min_weight = 1.0;
-  for (const auto& s : surfaces) {
-    r.degree_v = std::max(r.degree_v, s.degree_v);
-    r.continuity_u = std::min(r.continuity_u, sweep::min_continuity(s.knots_u, s.degree_u));
-    r.continuity_v = std::min(r.continuity_v, sweep::min_continuity(s.knots_v, s.degree_v));
-    for (const auto& row : s.weights) r.min_weight = std::min(r.min_weight, min_weight(row));
-  }
-  if (surfaces.size() > 1) r.continuity_v = std::min(r.continuity_v, 0);  // edges meet at C0
   const bool one_surface = surfaces.size() == 1 && !opt.solid;
   auto info = export_info(lm, opt, "kinematic surface of " + profile_name);
   info.units = r.units;

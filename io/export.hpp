@@ -47,6 +47,23 @@ struct ExportResult {
   std::optional<double> volume;            ///< --solid: the independent swept volume
 };
 
+/// The trajectory of the point as NURBS, exact at its minimal degree with positive weights
+/// (or approximated above opt.max_degree within opt.tol), in opt.units (default the
+/// motion's); nothing is written (opt.output is ignored). `result`, when given, receives
+/// degree, continuity, pole count, units and any measured deviation.
+sweep::NurbsCurve<double> trajectory_nurbs(const LoadedMotion& lm, const Eigen::Vector3d& point,
+                                           const ExportOptions& opt = {},
+                                           ExportResult* result = nullptr);
+
+/// The kinematic surface of each profile edge as NURBS (u = t, v the edge's parameter;
+/// exact, or approximated above opt.max_degree), in opt.units; with opt.solid the profile
+/// is checked as for export (closed, planar, no back-sweep) and result->volume is set.
+/// Nothing is written.
+std::vector<sweep::NurbsSurface<double>> sweep_nurbs(const LoadedMotion& lm,
+                                                     const sweep::Profile<double>& profile,
+                                                     const ExportOptions& opt = {},
+                                                     ExportResult* result = nullptr);
+
 ExportResult export_trajectory(const LoadedMotion& lm, const Eigen::Vector3d& point,
                                const ExportOptions& opt);
 ExportResult export_surface(const LoadedMotion& lm, const sweep::Profile<double>& profile,

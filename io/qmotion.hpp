@@ -6,6 +6,7 @@
 
 #include <qmotion/io/export.hpp>
 #include <qmotion/io/interpolate.hpp>
+#include <qmotion/io/motion_info.hpp>
 #include <qmotion/io/motion_json.hpp>
 #include <qmotion/io/nurbs_json.hpp>
 #include <qmotion/io/occt.hpp>

@@ -8,6 +8,7 @@
 #include <qmotion/io/cli/commands.hpp>
 #include <qmotion/io/export.hpp>
 #include <qmotion/io/interpolate.hpp>
+#include <qmotion/io/motion_info.hpp>
 #include <sstream>
 #ifdef QMOTION_WITH_CGAL
 #include <qmotion/io/exact_number.hpp>
@@ -30,157 +31,19 @@ namespace {
 
 using json = nlohmann::json;
 
-json vec_json(const Eigen::Vector3d& v) { return json{v(0), v(1), v(2)}; }
-
-/// The recorded input poses of a motion file's method, if any.
-std::optional<io::PoseSet> recorded_poses(const io::MotionFile& f) {
-  if (!f.method.is_object() || !f.method.contains("input_poses")) return std::nullopt;
-  return io::parse_poses_json_value(f.method["input_poses"], f.source + ": method.input_poses");
-}
-
-/// Residual of the motion at every recorded pose (null when a parameter is missing). Exact
-/// Scalar: 0 where Q(t_i) is exactly proportional to P_i, else the double residual.
-template <typename Scalar>
-json interpolation_residuals(const kernel::QMotion<Scalar>& m,
-                             const std::vector<kernel::Pose<Scalar>>& P, const io::MotionFile& f,
-                             Scalar /*tag*/) {
-  std::vector<Scalar> ts;
-  const json& params = f.method.contains("parameters") ? f.method["parameters"] : json();
-  for (std::size_t i = 0; i < P.size(); ++i) {
-    std::optional<Scalar> t = P[i].t;
-    if (params.is_array() && i < params.size()) {
-      const io::Number n =
-          io::read_number(params[i], f.source + ": method.parameters[" + std::to_string(i) + "]");
-#ifdef QMOTION_WITH_CGAL
-      if constexpr (kernel::is_exact_v<Scalar>) {
-        t = io::exact_from_text(n.text);
-      } else {
-        t = n.value;
-      }
-#else
-      t = n.value;
-#endif
-    }
-    if (!t) return nullptr;
-    ts.push_back(*t);
-  }
-  return json(kernel::pose_residuals(m, P, ts));
-}
-
-/// The order a recorded interpolation method guarantees (kernel::construction_order).
-std::optional<int> recorded_order(const json& method) {
-  if (!method.is_object() || !method.contains("rotation_degree") ||
-      !method.contains("translation") || !method.contains("translation_degree"))
-    return std::nullopt;
-  const json& k = method["rotation_degree"];
-  const json& l = method["translation_degree"];
-  const json& tr = method["translation"];
-  if (!k.is_number_integer() || !tr.is_string()) return std::nullopt;
-  if (tr == "trt" && l.is_array() && l.size() == 2 && l[0].is_number_integer() &&
-      l[1].is_number_integer())
-    return kernel::construction_order(kernel::TranslationMethod::trt, k.get<int>(), l[0].get<int>(),
-                                      l[1].get<int>());
-  if (!l.is_number_integer()) return std::nullopt;
-  if (tr == "tr")
-    return kernel::construction_order(kernel::TranslationMethod::tr, k.get<int>(), l.get<int>());
-  if (tr == "minimal")
-    return kernel::construction_order(kernel::TranslationMethod::minimal, k.get<int>(),
-                                      l.get<int>());
-  return std::nullopt;
-}
-
 int cmd_info(const std::string& path, bool exact) {
-  const io::MotionFile f = io::read_motion(path);
-  const kernel::QMotion<double> m = io::to_motion_double(f);
-  json out;
-  out["type"] = "q-motion";
-  out["basis"] = m.basis == kernel::Basis::bezier ? "bezier" : "bspline";
-  out["degree"] = m.degree();
-  // Order: degree of a general point's trajectory with every common factor removed.
-  // --exact: exactly from the file's digits. Otherwise: what the recorded construction
-  // guarantees, or, for motions without one, a numerical rank.
-  const auto recorded = recorded_order(f.method);
-#ifdef QMOTION_WITH_CGAL
-  if (exact) {
-    out["order"] = kernel::motion_order(io::to_motion_exact(f));
-    out["order_source"] = "exact";
-  } else
-#endif
-      if (recorded) {
-    out["order"] = *recorded;
-    out["order_source"] = "construction";
-  } else {
-    out["order"] = kernel::motion_order(m);
-    out["order_source"] = "numerical";
-  }
-  out["segments"] = m.segments();
-  out["param_range"] = {m.a(), m.b()};
-  out["units"] = f.units;
-#ifdef QMOTION_WITH_CGAL
-  if (exact) {
-    out["plucker_residual"] = kernel::to_double(kernel::plucker_residual(io::to_motion_exact(f)));
-    out["exact"] = true;
-  } else {
-    out["plucker_residual"] = kernel::plucker_residual(m);
-  }
-#else
-  if (exact)
-    throw Error(Errc::invalid_input,
-                "--exact: this build has no exact arithmetic (QMOTION_WITH_CGAL=OFF)");
-  out["plucker_residual"] = kernel::plucker_residual(m);
-#endif
-  json res = nullptr;
-  if (const auto poses = recorded_poses(f)) {
-#ifdef QMOTION_WITH_CGAL
-    res = exact ? interpolation_residuals(io::to_motion_exact(f), io::to_poses_exact(*poses), f,
-                                          kernel::Rational(0))
-                : interpolation_residuals(m, io::to_poses_double(*poses), f, 0.0);
-#else
-    res = interpolation_residuals(m, io::to_poses_double(*poses), f, 0.0);
-#endif
-  }
-  out["interpolation_residual"] = res;
-  out["poles"] = kernel::find_poles(m);
-  if (!f.method.is_null()) {
-    json method = f.method;
-    for (const char* bulky : {"input_poses", "rotation_control_points",
-                              "translation_control_points", "translation2_control_points"})
-      method.erase(bulky);
-    out["method"] = method;
-  }
-  std::cout << out.dump(2) << '\n';
+  std::cout << io::motion_info(io::read_motion(path), exact).dump(2) << '\n';
   return 0;
 }
 
 int cmd_eval(const std::string& path, const std::string& t_text, const std::string& point_text) {
   const io::MotionFile f = io::read_motion(path);
-  const kernel::QMotion<double> m = io::to_motion_double(f);
   const double t = io::parse_number_text(t_text, "--t").value;
-  if (t < m.a() || t > m.b()) {
-    std::ostringstream os;
-    os.precision(17);
-    os << "--t " << t_text << " is outside the motion's parameter interval [" << m.a() << ", "
-       << m.b() << "]";
-    throw Error(Errc::invalid_input, os.str());
-  }
   const Eigen::Vector3d x =
       point_text.empty() ? Eigen::Vector3d::Zero() : io::parse_point(point_text, "--point");
-  const auto q = kernel::evaluate(m, t);
-  if (q.real().norm2() <= 1e-300)
-    throw Error(Errc::numerical_failure,
-                "the motion has a pole at t = " + t_text + " (zero rotational part)");
-  kernel::Quaternion<double> r = kernel::normalized(q.real());
-  if (r.w() < 0) r = -r;
-  json out;
-  out["t"] = t;
-  out["position"] = vec_json(kernel::translation_vector(q));
-  out["quaternion"] = {r.w(), r.x(), r.y(), r.z()};
-  out["point"] = vec_json(kernel::apply_point(q, x));
-  const double pl = kernel::plucker_residual(q);
-  if (pl > 1e-9)
-    std::cerr << "qmotion: warning: " << path
-              << " violates the Plucker condition at t (relative residual " << pl
-              << "): not a rigid motion\n";
+  std::string warning;
+  const json out = io::motion_eval(f, t, x, &warning, t_text);
+  if (!warning.empty()) std::cerr << "qmotion: warning: " << path << " " << warning << "\n";
   std::cout << out.dump(2) << '\n';
   return 0;
 }

@@ -1,0 +1,23 @@
+// io/motion_info.hpp: what `qmotion info` and `qmotion eval` report, as library calls.
+#pragma once
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+#include <qmotion/io/motion_json.hpp>
+#include <string>
+
+namespace qmotion::io {
+
+/// The `info` report of SPEC §6: type, basis, degree, order (+ order_source), segments,
+/// param_range, units, plucker_residual, interpolation_residual (per recorded pose), poles,
+/// method. `exact`: order and residuals in CGAL::Exact_rational from the file's digits.
+nlohmann::json motion_info(const MotionFile& motion, bool exact = false);
+
+/// The `eval` report at t: position (image of the moving origin), quaternion (unit, w >= 0)
+/// and the image of `point`. Throws Errc::invalid_input for t outside the interval and
+/// Errc::numerical_failure at a pole. `warning` receives a Plucker violation, if any;
+/// `t_text` is how messages spell t (default: its value).
+nlohmann::json motion_eval(const MotionFile& motion, double t,
+                           const Eigen::Vector3d& point = Eigen::Vector3d::Zero(),
+                           std::string* warning = nullptr, const std::string& t_text = "");
+
+}  // namespace qmotion::io
