@@ -4,8 +4,10 @@
 // qmotion::io.
 #pragma once
 
+#include <qmotion/io/atomic_file.hpp>
 #include <qmotion/io/export.hpp>
 #include <qmotion/io/interpolate.hpp>
+#include <qmotion/io/json_number.hpp>
 #include <qmotion/io/motion_info.hpp>
 #include <qmotion/io/motion_json.hpp>
 #include <qmotion/io/nurbs_json.hpp>

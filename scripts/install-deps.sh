@@ -2,7 +2,7 @@
 # Installs qmotion's build and test dependencies from Debian's packages.
 # Usage: scripts/install-deps.sh [--test]
 #   --test  also installs what the test suite needs (GoogleTest, Google Benchmark,
-#           clang-format, and FreeCAD for the interop test).
+#           clang-format, pytest for the Python module, and FreeCAD for the interop test).
 set -euo pipefail
 
 packages=(
@@ -11,9 +11,10 @@ packages=(
   nlohmann-json3-dev libcli11-dev
   libocct-foundation-dev libocct-modeling-data-dev libocct-modeling-algorithms-dev
   libocct-data-exchange-dev libtbb-dev
+  python3 python3-dev python3-numpy pybind11-dev
 )
 if [[ "${1:-}" == "--test" ]]; then
-  packages+=(googletest libgtest-dev libgmock-dev libbenchmark-dev clang-format git python3 freecad-python3)
+  packages+=(googletest libgtest-dev libgmock-dev libbenchmark-dev clang-format git python3 python3-pytest freecad-python3)
 fi
 
 missing=()

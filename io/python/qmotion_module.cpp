@@ -1,0 +1,385 @@
+// io/python/qmotion_module.cpp: the Python module `qmotion` (pybind11). Thin, like the CLI:
+// every function converts its arguments, calls the library and converts the result.
+// qmotion::Error becomes ValueError (bad input, exit 2), ArithmeticError (numerical
+// failure, exit 3) or RuntimeError, with the CLI's message.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <fstream>
+#include <qmotion/qmotion.hpp>
+#include <sstream>
+
+namespace py = pybind11;
+namespace qm = qmotion;
+using json = nlohmann::json;
+
+namespace {
+
+/// nlohmann::json -> Python objects, through Python's own json module.
+py::object to_python(const json& j) { return py::module_::import("json").attr("loads")(j.dump()); }
+
+/// Python dict/list -> nlohmann::json.
+json from_python(const py::handle& o) {
+  return json::parse(py::module_::import("json").attr("dumps")(o).cast<std::string>());
+}
+
+Eigen::Vector3d vec3(const py::handle& o, const std::string& what) {
+  const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(o);
+  if (!a || a.size() != 3)
+    throw qm::Error(qm::Errc::invalid_input, what + ": expected three numbers x, y, z");
+  return Eigen::Vector3d(a.at(0), a.at(1), a.at(2));
+}
+
+py::array_t<double> points_array(const std::vector<Eigen::Vector3d>& pts) {
+  py::array_t<double> a({static_cast<py::ssize_t>(pts.size()), py::ssize_t(3)});
+  auto m = a.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < pts.size(); ++i)
+    for (int c = 0; c < 3; ++c) m(static_cast<py::ssize_t>(i), c) = pts[i](c);
+  return a;
+}
+
+/// A motion: its file (curve, factors, method, units) and the double motion built from it.
+struct PyMotion {
+  qm::io::LoadedMotion loaded;
+  json document;
+};
+
+PyMotion make_motion(json document, const std::string& source) {
+  PyMotion m{qm::io::load_motion(qm::io::parse_motion(document, source)), std::move(document)};
+  return m;
+}
+
+/// Poses from a file name, a pose-JSON dict, or rows [t, x, y, z, qw, qx, qy, qz] (or
+/// without t: 7 columns) as a list or numpy array.
+qm::io::PoseSet to_poses(const py::handle& p, const std::string& units) {
+  if (py::isinstance<qm::io::PoseSet>(p)) return p.cast<qm::io::PoseSet>();
+  if (py::isinstance<py::str>(p)) return qm::io::read_poses(p.cast<std::string>());
+  if (py::isinstance<py::dict>(p))
+    return qm::io::parse_poses_json_value(from_python(p), "poses (dict)");
+  const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(p);
+  if (!a || a.ndim() != 2 || (a.shape(1) != 7 && a.shape(1) != 8))
+    throw qm::Error(qm::Errc::invalid_input,
+                    "poses: expected a file name, a pose dict, or rows of 8 numbers t, x, y, z, "
+                    "qw, qx, qy, qz (7 without t)");
+  const bool has_t = a.shape(1) == 8;
+  json doc{{"units", units}, {"poses", json::array()}};
+  for (py::ssize_t i = 0; i < a.shape(0); ++i) {
+    const int o = has_t ? 1 : 0;
+    json pose{{"position", {a.at(i, o), a.at(i, o + 1), a.at(i, o + 2)}},
+              {"rotation",
+               {{"quaternion", {a.at(i, o + 3), a.at(i, o + 4), a.at(i, o + 5), a.at(i, o + 6)}}}}};
+    if (has_t) pose["t"] = a.at(i, 0);
+    doc["poses"].push_back(pose);
+  }
+  return qm::io::parse_poses_json_value(doc, "poses (array)");
+}
+
+qm::sweep::Profile<double> to_profile(const py::handle& p, const std::string& units) {
+  if (py::isinstance<qm::sweep::Profile<double>>(p)) return p.cast<qm::sweep::Profile<double>>();
+  if (py::isinstance<qm::sweep::NurbsCurve<double>>(p))
+    return qm::sweep::single_edge(p.cast<qm::sweep::NurbsCurve<double>>());
+  return qm::io::read_profile(p.cast<std::string>(), units);
+}
+
+qm::io::ExportOptions export_options(const std::string& output, int max_degree, double tol,
+                                     const std::string& units, bool single_face, bool solid) {
+  qm::io::ExportOptions o;
+  o.output = output;
+  o.max_degree = max_degree;
+  o.tol = tol;
+  o.units = units;
+  o.single_face = single_face;
+  o.solid = solid;
+  return o;
+}
+
+json result_json(const qm::io::ExportResult& r) {
+  json j{{"path", r.path},
+         {"degree_u", r.degree_u},
+         {"degree_v", r.degree_v},
+         {"faces", r.faces},
+         {"poles", r.poles},
+         {"units", r.units},
+         {"continuity_u", r.continuity_u},
+         {"continuity_v", r.continuity_v}};
+  if (r.approx_deviation) j["approximation_deviation"] = *r.approx_deviation;
+  if (r.volume) j["volume"] = *r.volume;
+  return j;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(qmotion, m) {
+  m.doc() =
+      "qmotion: rational rigid-body motions (Juttler's dual-quaternion Bezier and B-spline "
+      "motions) and their exact NURBS trajectories and kinematic sweep surfaces, written as "
+      "STEP, IGES and JSON.\n\n"
+      "    import qmotion\n"
+      "    m = qmotion.interpolate('poses.json')          # elliptic + TR, like the CLI\n"
+      "    s = qmotion.sweep(m, 'circle:3')[0]            # NurbsSurface, numpy arrays\n"
+      "    qmotion.export(m, 'tube.step', profile='circle:3', solid=True)\n"
+      "    qmotion.check('tube.step', m, profile='circle:3')['relative_deviation']\n\n"
+      "Bad input raises ValueError, a numerical failure ArithmeticError, with the messages "
+      "of the qmotion command line.";
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const qm::Error& e) {
+      switch (e.code()) {
+        case qm::Errc::invalid_input:
+          PyErr_SetString(PyExc_ValueError, e.what());
+          return;
+        case qm::Errc::numerical_failure:
+          PyErr_SetString(PyExc_ArithmeticError, e.what());
+          return;
+        default:
+          PyErr_SetString(PyExc_RuntimeError, e.what());
+          return;
+      }
+    }
+  });
+
+  py::class_<qm::io::PoseSet>(m, "Poses", "A validated set of poses (SPEC §5)")
+      .def_property_readonly("units", [](const qm::io::PoseSet& s) { return s.units; })
+      .def("__len__", [](const qm::io::PoseSet& s) { return s.poses.size(); })
+      .def(
+          "to_dict", [](const qm::io::PoseSet& s) { return to_python(qm::io::poses_to_json(s)); },
+          "The poses as pose JSON (SPEC §5), as a dict");
+  m.def(
+      "read_poses", [](const std::string& path) { return qm::io::read_poses(path); },
+      py::arg("path"),
+      "Reads and validates a pose file (.json or .csv). ValueError names the "
+      "file, the pose and the field that is wrong.");
+  m.def("poses", &to_poses, py::arg("poses"), py::arg("units") = "mm",
+        "Poses from a file name, a pose dict, or rows [t, x, y, z, qw, qx, qy, qz] (7 columns "
+        "without t) as a list or numpy array, validated as the CLI validates files.");
+
+  py::class_<qm::sweep::NurbsCurve<double>>(m, "NurbsCurve",
+                                            "A NURBS curve: degree, full clamped knots, "
+                                            "Cartesian poles (n x 3) and weights")
+      .def_readonly("degree", &qm::sweep::NurbsCurve<double>::degree)
+      .def_property_readonly("knots",
+                             [](const qm::sweep::NurbsCurve<double>& c) {
+                               return py::array_t<double>(static_cast<py::ssize_t>(c.knots.size()),
+                                                          c.knots.data());
+                             })
+      .def_property_readonly(
+          "poles", [](const qm::sweep::NurbsCurve<double>& c) { return points_array(c.points); })
+      .def_property_readonly("weights",
+                             [](const qm::sweep::NurbsCurve<double>& c) {
+                               return py::array_t<double>(
+                                   static_cast<py::ssize_t>(c.weights.size()), c.weights.data());
+                             })
+      .def(
+          "__call__",
+          [](const qm::sweep::NurbsCurve<double>& c, double t) {
+            const Eigen::Vector3d p = qm::sweep::evaluate(c, t);
+            return std::vector<double>{p(0), p(1), p(2)};
+          },
+          py::arg("t"), "The point at parameter t");
+
+  py::class_<qm::sweep::NurbsSurface<double>>(
+      m, "NurbsSurface",
+      "A tensor-product NURBS surface: degrees, full clamped knots in u (the motion parameter "
+      "t) and v (the profile's), poles (nu x nv x 3) and weights (nu x nv)")
+      .def_readonly("degree_u", &qm::sweep::NurbsSurface<double>::degree_u)
+      .def_readonly("degree_v", &qm::sweep::NurbsSurface<double>::degree_v)
+      .def_property_readonly("knots_u",
+                             [](const qm::sweep::NurbsSurface<double>& s) {
+                               return py::array_t<double>(
+                                   static_cast<py::ssize_t>(s.knots_u.size()), s.knots_u.data());
+                             })
+      .def_property_readonly("knots_v",
+                             [](const qm::sweep::NurbsSurface<double>& s) {
+                               return py::array_t<double>(
+                                   static_cast<py::ssize_t>(s.knots_v.size()), s.knots_v.data());
+                             })
+      .def_property_readonly(
+          "poles",
+          [](const qm::sweep::NurbsSurface<double>& s) {
+            const auto nu = static_cast<py::ssize_t>(s.points.size());
+            const auto nv = static_cast<py::ssize_t>(s.points.front().size());
+            py::array_t<double> a({nu, nv, py::ssize_t(3)});
+            auto w = a.mutable_unchecked<3>();
+            for (py::ssize_t i = 0; i < nu; ++i)
+              for (py::ssize_t j = 0; j < nv; ++j)
+                for (int c = 0; c < 3; ++c)
+                  w(i, j, c) =
+                      s.points[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)](c);
+            return a;
+          })
+      .def_property_readonly(
+          "weights",
+          [](const qm::sweep::NurbsSurface<double>& s) {
+            const auto nu = static_cast<py::ssize_t>(s.weights.size());
+            const auto nv = static_cast<py::ssize_t>(s.weights.front().size());
+            py::array_t<double> a({nu, nv});
+            auto w = a.mutable_unchecked<2>();
+            for (py::ssize_t i = 0; i < nu; ++i)
+              for (py::ssize_t j = 0; j < nv; ++j)
+                w(i, j) = s.weights[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
+            return a;
+          })
+      .def(
+          "__call__",
+          [](const qm::sweep::NurbsSurface<double>& s, double u, double v) {
+            const Eigen::Vector3d p = qm::sweep::evaluate(s, u, v);
+            return std::vector<double>{p(0), p(1), p(2)};
+          },
+          py::arg("u"), py::arg("v"), "The point at (u, v)");
+
+  py::class_<PyMotion>(m, "Motion",
+                       "A rational motion: its dual-quaternion curve, the factors it is the "
+                       "product of, how it was made, and its units")
+      .def_property_readonly("units", [](const PyMotion& p) { return p.loaded.file.units; })
+      .def_property_readonly("param_range",
+                             [](const PyMotion& p) {
+                               return std::make_pair(p.loaded.motion.a(), p.loaded.motion.b());
+                             })
+      .def_property_readonly("degree", [](const PyMotion& p) { return p.loaded.motion.degree(); })
+      .def(
+          "eval",
+          [](const PyMotion& p, double t, const py::object& point) {
+            const Eigen::Vector3d x =
+                point.is_none() ? Eigen::Vector3d::Zero() : vec3(point, "point");
+            return to_python(qm::io::motion_eval(p.loaded.file, t, x));
+          },
+          py::arg("t"), py::arg("point") = py::none(),
+          "Where the motion is at t: dict with position (image of the moving origin), "
+          "quaternion (unit, w >= 0) and point (image of `point`). ValueError outside the "
+          "interval, ArithmeticError at a pole.")
+      .def(
+          "info",
+          [](const PyMotion& p, bool exact) {
+            return to_python(qm::io::motion_info(p.loaded.file, exact));
+          },
+          py::arg("exact") = false,
+          "The `qmotion info` report as a dict: type, basis, degree, order, segments, "
+          "param_range, units, plucker_residual, interpolation_residual, poles, method.")
+      .def(
+          "to_dict", [](const PyMotion& p) { return to_python(p.document); },
+          "The motion file's document (SPEC §5) as a dict")
+      .def(
+          "save",
+          [](const PyMotion& p, const std::string& path) {
+            qm::io::write_file_atomic(path, p.document.dump(1) + "\n");
+          },
+          py::arg("path"),
+          "Writes the motion file, byte for byte what `qmotion interpolate` writes");
+
+  m.def(
+      "load",
+      [](const std::string& path) {
+        PyMotion p{qm::io::load_motion(path), {}};
+        std::ifstream in(path, std::ios::binary);
+        std::stringstream text;
+        text << in.rdbuf();
+        p.document = json::parse(text.str());  // as written (numbers as numbers)
+        return p;
+      },
+      py::arg("path"), "Reads a motion file written by `qmotion interpolate` or `save`.");
+
+  m.def(
+      "interpolate",
+      [](const py::object& poses, const std::string& rotation, const std::string& translation,
+         const std::string& form, const std::string& param, int degree, int translation_degree,
+         const py::object& trt_degrees, bool exact, const std::string& units) {
+        qm::io::InterpolateOptions o;
+        o.rotation = rotation;
+        o.translation = translation;
+        o.form = form;
+        o.param = param;
+        o.degree = degree;
+        o.translation_degree = translation_degree;
+        if (!trt_degrees.is_none()) {
+          const auto d = trt_degrees.cast<std::pair<int, int>>();
+          o.trt_degrees = std::to_string(d.first) + "," + std::to_string(d.second);
+        }
+        o.exact = exact;
+        auto r = qm::io::interpolate(to_poses(poses, units), o);
+        return make_motion(std::move(r.document), "interpolate()");
+      },
+      py::arg("poses"), py::arg("rotation") = "elliptic", py::arg("translation") = "tr",
+      py::arg("form") = "", py::arg("param") = "", py::arg("degree") = -1,
+      py::arg("translation_degree") = -1, py::arg("trt_degrees") = py::none(),
+      py::arg("exact") = false, py::arg("units") = "mm",
+      "A Q-motion through the poses (Juttler 1994), with the options of `qmotion interpolate`:\n"
+      "  rotation: 'elliptic' | 'affine' | 'projective'\n"
+      "  translation: 'tr' | 'trt' | 'minimal'; trt_degrees=(L1, L2)\n"
+      "  form: 'bezier' (default up to six poses) | 'bspline' (beyond) | 'c1'\n"
+      "  param: 'given' (default when every pose has t) | 'uniform' | 'chordal' | "
+      "'star-chordal' | 'centripetal' | 'angular' | 'angular-chordal'\n"
+      "  degree, translation_degree: the B-spline factors' degrees K and L (default 3)\n"
+      "  exact: CGAL exact rationals (quaternion rotations, 'p/q' strings kept exactly)\n"
+      "poses: a file name, a pose dict, or rows [t,x,y,z,qw,qx,qy,qz] (units for arrays).");
+
+  m.def(
+      "trajectory",
+      [](const PyMotion& p, const py::object& point, int max_degree, double tol,
+         const std::string& units) {
+        return qm::io::trajectory_nurbs(p.loaded, vec3(point, "point"),
+                                        export_options("", max_degree, tol, units, false, false));
+      },
+      py::arg("motion"), py::arg("point"), py::arg("max_degree") = -1, py::arg("tol") = -1.0,
+      py::arg("units") = "",
+      "The exact rational trajectory of `point` (moving space) as a NurbsCurve parametrised "
+      "by t, at its minimal degree with positive weights; above max_degree an approximation "
+      "within tol (default 1e-6 of its size). units converts (mm, cm, m, um, in, ft).");
+
+  m.def(
+      "sweep",
+      [](const PyMotion& p, const py::object& profile, int max_degree, double tol,
+         const std::string& units) {
+        return qm::io::sweep_nurbs(p.loaded, to_profile(profile, p.loaded.file.units),
+                                   export_options("", max_degree, tol, units, false, false));
+      },
+      py::arg("motion"), py::arg("profile"), py::arg("max_degree") = -1, py::arg("tol") = -1.0,
+      py::arg("units") = "",
+      "The kinematic surface M(t) x(v) of each profile edge: a list of NurbsSurface, u = t, v "
+      "the edge's parameter, poles M_i X_j (exact, no fitting). profile: a NurbsCurve, or a "
+      "spec as for the CLI: a .json/.step/.igs file, 'segment:x0,y0,z0:x1,y1,z1', "
+      "'polyline:x,y,z:...', 'rect:w,h', 'circle:r', 'arc:r,a0,a1'.");
+
+  m.def(
+      "export",
+      [](const PyMotion& p, const std::string& path, const py::object& profile,
+         const py::object& point, int max_degree, double tol, const std::string& units,
+         bool single_face, bool solid) {
+        if (profile.is_none() == point.is_none())
+          throw qm::Error(qm::Errc::invalid_input, "export: give exactly one of profile and point");
+        const auto opt = export_options(path, max_degree, tol, units, single_face, solid);
+        if (!point.is_none())
+          return to_python(
+              result_json(qm::io::export_trajectory(p.loaded, vec3(point, "point"), opt)));
+        const std::string name =
+            py::isinstance<py::str>(profile) ? profile.cast<std::string>() : "a profile";
+        return to_python(result_json(
+            qm::io::export_surface(p.loaded, to_profile(profile, p.loaded.file.units), name, opt)));
+      },
+      py::arg("motion"), py::arg("path"), py::arg("profile") = py::none(),
+      py::arg("point") = py::none(), py::arg("max_degree") = -1, py::arg("tol") = -1.0,
+      py::arg("units") = "", py::arg("single_face") = false, py::arg("solid") = false,
+      "Writes the trajectory of `point` or the sweep of `profile` to path (.json, .step/.stp, "
+      ".igs/.iges; sweeps also .stl), as `qmotion trajectory` / `qmotion sweep` do: STEP/IGES "
+      "shells split at C0 knots (single_face: one face per edge), solid=True for a closed "
+      "planar profile. Returns a dict: degrees, continuity, faces, poles, units, volume.");
+
+  m.def(
+      "check",
+      [](const std::string& path, const PyMotion& p, const py::object& profile,
+         const py::object& point, int grid) {
+        if (profile.is_none() == point.is_none())
+          throw qm::Error(qm::Errc::invalid_input, "check: give exactly one of profile and point");
+        std::optional<qm::sweep::Profile<double>> prof;
+        std::optional<Eigen::Vector3d> pt;
+        if (!profile.is_none()) prof = to_profile(profile, p.loaded.file.units);
+        if (!point.is_none()) pt = vec3(point, "point");
+        return to_python(qm::io::check_geometry(path, p.loaded, prof, pt, grid));
+      },
+      py::arg("path"), py::arg("motion"), py::arg("profile") = py::none(),
+      py::arg("point") = py::none(), py::arg("grid") = 41,
+      "The exactness check of `qmotion check`: the file's NURBS (STEP/IGES read through "
+      "OpenCASCADE) against the motion applied to the profile or point. A dict with "
+      "max_deviation, relative_deviation, weights_positive, valid, faces, closed, volume, ...");
+}

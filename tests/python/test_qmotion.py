@@ -1,0 +1,166 @@
+"""The Python module against the qmotion command line: same motions bit for bit, same
+sweep poles, same errors (class and message). Run by CTest (python.pytest) with the built
+module on PYTHONPATH; QMOTION_EXE and QMOTION_TEST_DATA name the CLI and tests/data."""
+import json
+import os
+import subprocess
+
+import numpy as np
+import pytest
+
+import qmotion
+
+EXE = os.environ["QMOTION_EXE"]
+DATA = os.environ["QMOTION_TEST_DATA"]
+
+
+def data(rel):
+    return os.path.join(DATA, rel)
+
+
+def cli(*args):
+    return subprocess.run([EXE] + [str(a) for a in args], capture_output=True, text=True)
+
+
+FORMS = [
+    ("poses/five_positions.json", dict(rotation="elliptic", translation="tr"), []),
+    ("poses/five_positions.json", dict(rotation="affine", translation="tr"), ["--rotation", "affine"]),
+    ("poses/five_positions.json", dict(rotation="projective", translation="tr"), ["--rotation", "projective"]),
+    ("poses/five_positions.json", dict(translation="trt"), ["--translation", "trt"]),
+    ("poses/five_positions.json", dict(translation="trt", trt_degrees=(2, 1)),
+     ["--translation", "trt", "--trt-degrees", "2,1"]),
+    ("poses/five_positions.json", dict(translation="minimal"), ["--translation", "minimal"]),
+    ("poses/three_positions_no_t.json", dict(param="chordal"), ["--param", "chordal"]),
+    ("poses/helix_40.json", dict(), []),
+    ("poses/helix_40.json", dict(form="bspline", degree=4, translation_degree=2),
+     ["--form", "bspline", "--degree", "4", "--translation-degree", "2"]),
+    ("poses/helix_40.json", dict(translation="minimal"), ["--translation", "minimal"]),
+    ("poses/helix_40.json", dict(form="c1"), ["--form", "c1"]),
+    ("poses/rational_exact.json", dict(exact=True), ["--exact"]),
+    ("poses/rational_exact.json", dict(exact=True, form="bspline"), ["--exact", "--form", "bspline"]),
+]
+
+
+@pytest.mark.parametrize("poses,kwargs,flags", FORMS)
+def test_interpolate_gives_the_clis_motion_bit_for_bit(tmp_path, poses, kwargs, flags):
+    cli_file, py_file = tmp_path / "cli.json", tmp_path / "py.json"
+    r = cli("interpolate", data(poses), "-o", cli_file, *flags)
+    assert r.returncode == 0, r.stderr
+    m = qmotion.interpolate(data(poses), **kwargs)
+    m.save(str(py_file))
+    assert py_file.read_bytes() == cli_file.read_bytes()
+    # load() reads it back to the same motion, and save() writes it unchanged
+    back = qmotion.load(str(cli_file))
+    assert back.info() == m.info()
+    back.save(str(py_file))
+    assert py_file.read_bytes() == cli_file.read_bytes()
+    info = m.info()
+    assert max(info["interpolation_residual"]) <= 1e-9
+    assert info["plucker_residual"] <= 1e-12
+
+
+def test_poses_from_numpy_rows_interpolate_each_pose():
+    # Rows t, x, y, z, qw, qx, qy, qz of a screw motion, as a numpy array.
+    rows = []
+    for k, t in enumerate(np.linspace(0, 1, 5)):
+        half = np.radians(20 * k) / 2
+        rows.append([t, 5 * np.cos(t), 5 * np.sin(t), 10 * t, np.cos(half), 0, 0, np.sin(half)])
+    m = qmotion.interpolate(np.array(rows))
+    assert m.degree == 8
+    for row in rows:
+        e = m.eval(row[0])
+        assert np.allclose(e["position"], row[1:4], atol=1e-9)
+        q = np.array(row[4:8])
+        assert min(np.linalg.norm(q - e["quaternion"]), np.linalg.norm(q + e["quaternion"])) <= 1e-9
+    with pytest.raises(ValueError, match="rows of 8 numbers"):
+        qmotion.interpolate(np.zeros((3, 5)))
+
+
+def test_sweep_and_trajectory_poles_equal_the_clis_json(tmp_path):
+    motion = tmp_path / "m.json"
+    assert cli("interpolate", data("poses/helix_40.json"), "-o", motion).returncode == 0
+    m = qmotion.load(str(motion))
+    for profile in (data("profiles/parabola.json"), "circle:3", "rect:4,2"):
+        out = tmp_path / "s.json"
+        r = cli("sweep", motion, "--profile", profile, "-o", out)
+        assert r.returncode == 0, r.stderr
+        doc = json.load(open(out))
+        faces = doc["faces"] if doc["type"] == "nurbs_shell" else [doc]
+        surfaces = qmotion.sweep(m, profile)
+        assert len(surfaces) == len(faces)
+        for s, f in zip(surfaces, faces):
+            assert np.array_equal(s.poles, np.array(f["control_points"]))
+            assert np.array_equal(s.weights, np.array(f["weights"]))
+            assert np.array_equal(s.knots_u, np.array(f["knots_u"]))
+            assert np.array_equal(s.knots_v, np.array(f["knots_v"]))
+            assert (s.degree_u, s.degree_v) == (f["degree_u"], f["degree_v"])
+    out = tmp_path / "c.json"
+    assert cli("trajectory", motion, "--point", "1,2,3", "-o", out).returncode == 0
+    doc = json.load(open(out))
+    c = qmotion.trajectory(m, [1, 2, 3])
+    assert np.array_equal(c.poles, np.array(doc["control_points"]))
+    assert np.array_equal(c.weights, np.array(doc["weights"]))
+    assert np.array_equal(c.knots, np.array(doc["knots"]))
+    # The curve is the point's path: compare with eval.
+    for t in np.linspace(0, 1, 11):
+        assert np.allclose(c(t), m.eval(t, [1, 2, 3])["point"], atol=1e-9)
+
+
+def test_export_and_check_do_the_main_job(tmp_path):
+    m = qmotion.interpolate(data("poses/screw_three.json"))
+    for ext in (".step", ".igs", ".json"):
+        path = str(tmp_path / ("tube" + ext))
+        r = qmotion.export(m, path, profile="circle:3", solid=True)
+        assert r["volume"] > 0
+        k = qmotion.check(path, m, profile="circle:3")
+        assert k["relative_deviation"] <= 1e-11
+        if ext == ".step":
+            assert k["valid"] and k["closed"] and k["solids"] == 1
+            assert abs(k["volume"] - r["volume"]) <= 1e-6 * r["volume"]
+
+
+def cli_message(args):
+    r = cli(*args)
+    assert r.returncode in (2, 3), r.stderr
+    prefix = "qmotion: error: "
+    assert r.stderr.startswith(prefix), r.stderr
+    return r.returncode, r.stderr[len(prefix):].strip()
+
+
+def test_errors_have_the_clis_class_and_message(tmp_path):
+    five = data("poses/five_positions.json")
+    motion = tmp_path / "m.json"
+    assert cli("interpolate", five, "-o", motion).returncode == 0
+    m = qmotion.load(str(motion))
+    pole = tmp_path / "pole.json"
+    json.dump({"type": "q-motion", "basis": "bezier", "degree": 1, "param_range": [0, 1],
+               "control_points": [[2, 0, 0, 0, 0, 0, 0, 0], [-2, 0, 0, 0, 0, 0, 0, 0]]}, open(pole, "w"))
+    cases = [
+        (lambda: qmotion.interpolate(data("bad_poses/bad_nan.json")), ["interpolate", data("bad_poses/bad_nan.json"), "-o", tmp_path / "x.json"]),
+        (lambda: qmotion.interpolate(five, rotation="slerp"), ["interpolate", five, "-o", tmp_path / "x.json", "--rotation", "slerp"]),
+        (lambda: qmotion.interpolate(data("poses/helix_40.json"), form="bezier"),
+         ["interpolate", data("poses/helix_40.json"), "-o", tmp_path / "x.json", "--form", "bezier"]),
+        (lambda: qmotion.export(m, str(tmp_path / "x.step"), profile="circle:0"),
+         ["sweep", motion, "--profile", "circle:0", "-o", tmp_path / "x.step"]),
+        (lambda: qmotion.export(qmotion.load(str(pole)), str(tmp_path / "x.step"), point=[1, 2, 3]),
+         ["trajectory", pole, "--point", "1,2,3", "-o", tmp_path / "x.step"]),
+        (lambda: qmotion.export(m, str(tmp_path / "x.step"), profile="circle:3", solid=True),
+         ["sweep", motion, "--profile", "circle:3", "--solid", "-o", tmp_path / "x.step"]),
+    ]
+    for call, args in cases:
+        status, message = cli_message(args)
+        expected = ValueError if status == 2 else ArithmeticError
+        with pytest.raises(expected) as info:
+            call()
+        assert str(info.value) == message
+    with pytest.raises(ValueError, match="outside"):
+        m.eval(2.0)
+    assert not (tmp_path / "x.step").exists()
+
+
+def test_every_function_is_documented():
+    for name in ("interpolate", "trajectory", "sweep", "export", "check", "load", "poses", "read_poses"):
+        doc = getattr(qmotion, name).__doc__
+        assert doc and len(doc) > 80, name
+    assert "kinematic surface" in qmotion.sweep.__doc__
+    assert "ValueError" in qmotion.__doc__
