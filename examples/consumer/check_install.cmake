@@ -18,3 +18,17 @@ execute_process(COMMAND ${WORK_DIR}/build/consumer ${WORK_DIR}/out RESULT_VARIAB
 if(rc)
   message(FATAL_ERROR "the consumer program failed: ${rc}")
 endif()
+# The installed Python module imports from the prefix (its RPATH finds libqmotion_io) and
+# does the main job.
+file(GLOB_RECURSE _modules ${WORK_DIR}/prefix/lib/python*/dist-packages/qmotion*.so)
+if(_modules)
+  list(GET _modules 0 _module)
+  get_filename_component(_dir ${_module} DIRECTORY)
+  execute_process(COMMAND ${CMAKE_COMMAND} -E env PYTHONPATH=${_dir} /usr/bin/python3 -c
+    "import qmotion; m = qmotion.interpolate([[0,0,0,0,1,0,0,0],[1,0,0,10,0.9,0,0,0.43]]); qmotion.export(m, '${WORK_DIR}/out/py.step', profile='circle:3'); assert qmotion.check('${WORK_DIR}/out/py.step', m, profile='circle:3')['relative_deviation'] < 1e-11"
+    RESULT_VARIABLE rc)
+  if(rc)
+    message(FATAL_ERROR "the installed Python module failed: ${rc}")
+  endif()
+  message(STATUS "installed Python module: ${_module}")
+endif()

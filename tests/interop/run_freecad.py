@@ -71,6 +71,7 @@ def main():
         if r is None or not r["valid"] or r["faces"] != 1 or r["relative_distance"] > 1e-7:
             print("FAIL:", path, r)
             ok = False
+    ok = run_macro(freecad, data, work, os.environ.get("QMOTION_PYTHONPATH", "")) and ok
     for case in ops:
         r = report.get("ops", {}).get(case["name"])
         failures = [] if r else ["no result"]
@@ -85,6 +86,35 @@ def main():
             print("FAIL:", case["name"], "; ".join(failures))
             ok = False
     return 0 if ok else 1
+
+
+def run_macro(freecad, data, work, pythonpath):
+    """The example FreeCAD macro, run headless on two sweeps (skipped without the module)."""
+    if not pythonpath:
+        print("macro: QMOTION_PYTHONPATH not set (no Python module built): skipped")
+        return True
+    here = os.path.dirname(os.path.abspath(__file__))
+    result = os.path.join(work, "macro_result.json")
+    if os.path.exists(result):
+        os.remove(result)
+    cases = [["bezier_parabola", os.path.join(data, "poses/five_positions.json"),
+              os.path.join(data, "profiles/parabola.json")],
+             ["bspline_circle", os.path.join(data, "poses/helix_40.json"), "circle:3"]]
+    env = dict(os.environ, PYTHONPATH=pythonpath, QMOTION_FC_RESULT=result, QMOTION_FC_CASES=json.dumps(cases),
+               QMOTION_FC_MACRO_DIR=os.path.join(here, "..", "..", "examples", "freecad"))
+    subprocess.run([freecad, os.path.join(here, "freecad_macro_check.py")], env=env, stdin=subprocess.DEVNULL,
+                   timeout=240)
+    if not os.path.exists(result):
+        print("FAIL: the macro wrote no result")
+        return False
+    report = json.load(open(result))
+    print("macro:", json.dumps(report, indent=1))
+    ok = len(report) == len(cases)
+    for name, r in report.items():
+        if not (r["valid"] and r["surfaces"] >= 1 and r["relative"] <= 1e-12):
+            print("FAIL: macro", name, r)
+            ok = False
+    return ok
 
 
 def operation_cases(qmotion, data, work):
