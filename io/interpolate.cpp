@@ -115,27 +115,17 @@ json run_spline_interpolation(const std::vector<kernel::Pose<Scalar>>& poses,
 InterpolatedMotion interpolate(const PoseSet& set, const InterpolateOptions& args) {
   const std::size_t count = set.poses.size();
   kernel::InterpolationOptions opt;
-  if (args.rotation == "elliptic") {
-    opt.rotation = kernel::RotationMethod::elliptic;
-  } else if (args.rotation == "affine") {
-    opt.rotation = kernel::RotationMethod::affine;
-  } else if (args.rotation == "projective") {
-    opt.rotation = kernel::RotationMethod::projective;
-  } else {
+  const auto rotation = kernel::rotation_method_from_string(args.rotation);
+  if (!rotation)
     throw Error(
         Errc::invalid_input,
         "--rotation: expected elliptic, affine or projective, found '" + args.rotation + "'");
-  }
-  if (args.translation == "tr") {
-    opt.translation = kernel::TranslationMethod::tr;
-  } else if (args.translation == "trt") {
-    opt.translation = kernel::TranslationMethod::trt;
-  } else if (args.translation == "minimal") {
-    opt.translation = kernel::TranslationMethod::minimal;
-  } else {
+  opt.rotation = *rotation;
+  const auto translation = kernel::translation_method_from_string(args.translation);
+  if (!translation)
     throw Error(Errc::invalid_input,
                 "--translation: expected tr, trt or minimal, found '" + args.translation + "'");
-  }
+  opt.translation = *translation;
   if (!args.trt_degrees.empty()) {
     if (opt.translation != kernel::TranslationMethod::trt)
       throw Error(Errc::invalid_input, "--trt-degrees needs --translation trt");

@@ -62,16 +62,13 @@ std::optional<int> recorded_order(const json& method) {
   const json& l = method["translation_degree"];
   const json& tr = method["translation"];
   if (!k.is_number_integer() || !tr.is_string()) return std::nullopt;
-  if (tr == "trt" && l.is_array() && l.size() == 2 && l[0].is_number_integer() &&
-      l[1].is_number_integer())
-    return kernel::construction_order(kernel::TranslationMethod::trt, k.get<int>(), l[0].get<int>(),
-                                      l[1].get<int>());
-  if (!l.is_number_integer()) return std::nullopt;
-  if (tr == "tr")
-    return kernel::construction_order(kernel::TranslationMethod::tr, k.get<int>(), l.get<int>());
-  if (tr == "minimal")
-    return kernel::construction_order(kernel::TranslationMethod::minimal, k.get<int>(),
-                                      l.get<int>());
+  const auto m = kernel::translation_method_from_string(tr.get<std::string>());
+  if (!m) return std::nullopt;
+  if (*m == kernel::TranslationMethod::trt && l.is_array() && l.size() == 2 &&
+      l[0].is_number_integer() && l[1].is_number_integer())
+    return kernel::construction_order(*m, k.get<int>(), l[0].get<int>(), l[1].get<int>());
+  if (*m != kernel::TranslationMethod::trt && l.is_number_integer())
+    return kernel::construction_order(*m, k.get<int>(), l.get<int>());
   return std::nullopt;
 }
 

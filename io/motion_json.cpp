@@ -65,17 +65,11 @@ std::optional<sweep::MotionFactors<Scalar>> read_factors(const MotionFile& f,
       !me.contains("translation_control_points") || !me.contains("translation"))
     return std::nullopt;
   const std::string where = f.source + ": method";
-  kernel::TranslationMethod method = kernel::TranslationMethod::tr;
-  const std::string tr = me["translation"].is_string() ? me["translation"].get<std::string>() : "";
-  if (tr == "tr") {
-    method = kernel::TranslationMethod::tr;
-  } else if (tr == "trt") {
-    method = kernel::TranslationMethod::trt;
-  } else if (tr == "minimal") {
-    method = kernel::TranslationMethod::minimal;
-  } else {
+  const auto parsed = kernel::translation_method_from_string(
+      me["translation"].is_string() ? me["translation"].get<std::string>() : "");
+  if (!parsed)
     throw Error(Errc::invalid_input, where + ".translation: expected tr, trt or minimal");
-  }
+  const kernel::TranslationMethod method = *parsed;
   auto knots_for = [&](const char* key, std::size_t poles) {
     std::vector<Scalar> k;
     if (me.contains(key)) {

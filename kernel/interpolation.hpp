@@ -25,6 +25,17 @@ inline const char* to_string(RotationMethod m) {
 inline const char* to_string(TranslationMethod m) {
   return m == TranslationMethod::tr ? "tr" : m == TranslationMethod::trt ? "trt" : "minimal";
 }
+/// The method of a name as to_string spells it (the one place names are parsed).
+inline std::optional<RotationMethod> rotation_method_from_string(const std::string& s) {
+  for (auto m : {RotationMethod::elliptic, RotationMethod::affine, RotationMethod::projective})
+    if (s == to_string(m)) return m;
+  return std::nullopt;
+}
+inline std::optional<TranslationMethod> translation_method_from_string(const std::string& s) {
+  for (auto m : {TranslationMethod::tr, TranslationMethod::trt, TranslationMethod::minimal})
+    if (s == to_string(m)) return m;
+  return std::nullopt;
+}
 
 struct InterpolationOptions {
   RotationMethod rotation = RotationMethod::elliptic;

@@ -1,0 +1,60 @@
+// io/cli/sweep.cpp: `qmotion sweep`.
+#include <CLI/CLI.hpp>
+#include <iostream>
+#include <memory>
+#include <qmotion/io/cli/command.hpp>
+#include <qmotion/io/export.hpp>
+#include <qmotion/io/profiles.hpp>
+#include <qmotion/kernel/error.hpp>
+
+namespace qmotion::cli {
+
+Command add_sweep(CLI::App& app) {
+  auto* sub = app.add_subcommand(
+      "sweep",
+      "Write the kinematic surface M(t) x(v) of a profile as NURBS (JSON, STEP, IGES; STL mesh)");
+  struct Options {
+    std::string motion, profile;
+    io::ExportOptions options;
+  };
+  auto o = std::make_shared<Options>();
+  sub->add_option("MOTION", o->motion, "Motion JSON file")->required();
+  sub->add_option("--profile", o->profile,
+                  "Profile: nurbs_curve .json (or an array of them), .step/.igs (the first "
+                  "wire's edges), segment:x0,y0,z0:x1,y1,z1, polyline:x,y,z:x,y,z:..., rect:w,h, "
+                  "circle:r, arc:r,a0,a1")
+      ->required();
+  sub->add_option("-o,--output", o->options.output, "Output .json, .step/.stp, .igs/.iges or .stl")
+      ->required();
+  sub->add_option("--max-degree", o->options.max_degree,
+                  "Approximate along the motion (measured, within --tol) above degree D");
+  sub->add_option(
+      "--tol", o->options.tol,
+      "Approximation tolerance in length units (default 1e-6 of the bounding-box diagonal)");
+  sub->add_option("--units", o->options.units,
+                  "Convert the numbers from the motion's unit into U and declare U: mm, cm, m, "
+                  "um, in, ft (default: the motion's)");
+  sub->add_flag("--single-face", o->options.single_face,
+                "STEP/IGES: one face per profile edge instead of a shell of C1 faces split at the "
+                "C0 knots");
+  sub->add_flag("--solid", o->options.solid,
+                "Closed planar profile: add planar caps at both ends and write one closed solid");
+  return {
+      sub, [o] {
+        const io::LoadedMotion lm = io::load_motion(o->motion);
+        const auto profile = io::read_profile(o->profile, lm.file.units);
+        const auto r = io::export_surface(lm, profile, o->profile, o->options);
+        std::cerr << "qmotion: wrote " << r.path << " (degrees " << r.degree_u << " x "
+                  << r.degree_v << ", C" << r.continuity_u << " x C" << r.continuity_v << ", "
+                  << r.faces << (r.faces == 1 ? " face, " : " faces, ") << r.poles << " poles, "
+                  << r.units
+                  << (r.volume ? ", solid of volume " + std::to_string(*r.volume) : std::string(""))
+                  << (r.approx_deviation ? ", approximation with measured deviation " +
+                                               std::to_string(*r.approx_deviation)
+                                         : std::string(""))
+                  << ")\n";
+        return 0;
+      }};
+}
+
+}  // namespace qmotion::cli

@@ -1,0 +1,45 @@
+// io/cli/trajectory.cpp: `qmotion trajectory`.
+#include <CLI/CLI.hpp>
+#include <iostream>
+#include <memory>
+#include <qmotion/io/cli/command.hpp>
+#include <qmotion/io/export.hpp>
+#include <qmotion/kernel/error.hpp>
+
+namespace qmotion::cli {
+
+Command add_trajectory(CLI::App& app) {
+  auto* sub = app.add_subcommand(
+      "trajectory", "Write the exact rational trajectory of a point as NURBS (JSON, STEP or IGES)");
+  struct Options {
+    std::string motion, point;
+    io::ExportOptions options;
+  };
+  auto o = std::make_shared<Options>();
+  sub->add_option("MOTION", o->motion, "Motion JSON file")->required();
+  sub->add_option("--point", o->point, "Point x,y,z of the moving space")->required();
+  sub->add_option("-o,--output", o->options.output, "Output .json, .step/.stp or .igs/.iges")
+      ->required();
+  sub->add_option("--max-degree", o->options.max_degree,
+                  "Approximate (measured, within --tol) when the exact degree is above D");
+  sub->add_option(
+      "--tol", o->options.tol,
+      "Approximation tolerance in length units (default 1e-6 of the bounding-box diagonal)");
+  sub->add_option("--units", o->options.units,
+                  "Convert the numbers from the motion's unit into U and declare U: mm, cm, m, "
+                  "um, in, ft (default: the motion's)");
+  return {sub, [o] {
+            const auto r = io::export_trajectory(io::load_motion(o->motion),
+                                                 io::parse_point(o->point, "--point"), o->options);
+            std::cerr << "qmotion: wrote " << r.path << " (degree " << r.degree_u << ", C"
+                      << r.continuity_u << ", " << r.poles << " poles, " << r.units << ", "
+                      << r.inserted_knots << " knots inserted for positive weights"
+                      << (r.approx_deviation ? ", approximation with measured deviation " +
+                                                   std::to_string(*r.approx_deviation)
+                                             : std::string(""))
+                      << ")\n";
+            return 0;
+          }};
+}
+
+}  // namespace qmotion::cli
