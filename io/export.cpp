@@ -60,6 +60,20 @@ void refuse_poles(const LoadedMotion& lm) {
                   ": its trajectories run to infinity there and cannot be exported");
 }
 
+/// Refuses a --max-degree below 1 (-1 means none) or, for STEP/IGES, above what
+/// OpenCASCADE stores.
+void check_max_degree(const ExportOptions& opt, Format f) {
+  if (opt.max_degree == -1) return;
+  if (opt.max_degree < 1)
+    throw Error(Errc::invalid_input, "--max-degree " + std::to_string(opt.max_degree) +
+                                         ": expected a degree of at least 1");
+  const int limit = occt_max_degree();
+  if ((f == Format::step || f == Format::iges) && opt.max_degree > limit)
+    throw Error(Errc::invalid_input, "--max-degree " + std::to_string(opt.max_degree) +
+                                         ": STEP and IGES (OpenCASCADE) store degrees up to " +
+                                         std::to_string(limit));
+}
+
 /// Refuses degrees above what the target stores, unless an approximation was asked for.
 void check_degree(int degree, const std::string& what, Format f, const ExportOptions& opt) {
   const int limit = occt_max_degree();
@@ -248,6 +262,7 @@ namespace {
 sweep::NurbsCurve<double> compute_trajectory(const LoadedMotion& lm, const Eigen::Vector3d& point,
                                              const ExportOptions& opt, Format f, ExportResult& r,
                                              double& tol) {
+  check_max_degree(opt, f);
   refuse_poles(lm);
   resolve_units(lm, opt, r);
   const auto h0 = lm.factors
@@ -327,6 +342,7 @@ std::vector<sweep::NurbsSurface<double>> compute_surfaces(const LoadedMotion& lm
                                                           const std::string& profile_name,
                                                           const ExportOptions& opt, Format f,
                                                           ExportResult& r, double& tol) {
+  check_max_degree(opt, f);
   refuse_poles(lm);
   resolve_units(lm, opt, r);
   if (f == Format::step || f == Format::iges)

@@ -131,7 +131,7 @@ InterpolatedMotion interpolate(const PoseSet& set, const InterpolateOptions& arg
       throw Error(Errc::invalid_input, "--trt-degrees needs --translation trt");
     const auto comma = args.trt_degrees.find(',');
     auto to_int = [&](const std::string& s) {
-      if (s.empty() || s.find_first_not_of("0123456789") != std::string::npos)
+      if (s.empty() || s.size() > 3 || s.find_first_not_of("0123456789") != std::string::npos)
         throw Error(Errc::invalid_input,
                     "--trt-degrees: expected two non-negative integers L1,L2, found '" +
                         args.trt_degrees + "'");

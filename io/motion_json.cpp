@@ -221,7 +221,14 @@ MotionFile parse_motion(const json& doc, const std::string& source) {
   if (!real_nonzero)
     throw Error(Errc::invalid_input,
                 source + ": control_points: the rotational (real) part is zero everywhere");
-  if (doc.contains("method")) f.method = doc["method"];
+  if (doc.contains("method")) {
+    if (!doc["method"].is_object() && !doc["method"].is_null())
+      throw Error(Errc::invalid_input, source +
+                                           ": method: expected an object (how the motion "
+                                           "was made), found " +
+                                           std::string(doc["method"].type_name()));
+    f.method = doc["method"];
+  }
   return f;
 }
 

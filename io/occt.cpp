@@ -252,6 +252,9 @@ void write_step_shape(const std::string& path, const TopoDS_Shape& shape, const 
   {
     std::ofstream f(out.temp_path(), std::ios::binary);
     if (!f || !sw.Print(f)) throw Error(Errc::invalid_input, path + ": cannot write the STEP file");
+    f.close();  // flushed and checked before the rename: a full disk leaves no truncated file
+    if (f.fail())
+      throw Error(Errc::invalid_input, path + ": writing the STEP file failed (disk full?)");
   }
   out.commit();
 }
@@ -291,6 +294,9 @@ void write_iges_model(const std::string& path, const Handle(Standard_Transient) 
   {
     std::ofstream f(out.temp_path(), std::ios::binary);
     if (!f || !iw.Print(f)) throw Error(Errc::invalid_input, path + ": cannot write the IGES file");
+    f.close();  // flushed and checked before the rename: a full disk leaves no truncated file
+    if (f.fail())
+      throw Error(Errc::invalid_input, path + ": writing the IGES file failed (disk full?)");
   }
   out.commit();
 }

@@ -476,6 +476,8 @@ TEST(Cli, BadProfilesAndPolesLeaveNoFile) {
       {{"sweep", m.string(), "--profile", "circle:3", "--units", "furlong"}, 2, "furlong"},
       {{"trajectory", m.string(), "--point", "1,2,3", "--units", "yd"}, 2, "unknown length unit"},
       {{"sweep", m.string(), "--profile", "circle:3", "--solid"}, 3, "sweeps back"},
+      {{"sweep", m.string(), "--profile", "circle:3", "--max-degree", "0"}, 2, "--max-degree 0"},
+      {{"trajectory", m.string(), "--point", "1,2,3", "--max-degree", "-5"}, 2, "at least 1"},
   };
   for (const std::string ext : {".json", ".step", ".igs"})
     for (const auto& c : cases) {
@@ -527,6 +529,34 @@ TEST(Cli, CheckReadsTheWeightsOfJsonCurvesAndSurfaces) {
     EXPECT_EQ(r.status, 2);
     EXPECT_NE(r.err.find("weights[1]"), std::string::npos) << r.err;
   }
+}
+
+TEST(Cli, HostileOptionValuesAndMethodBlocksAreBadInput) {
+  const fs::path m = five_motion("elliptic", "tr");
+  // A method block that is not an object: exit 2 naming it, not an internal error.
+  json doc = json::parse(slurp(m));
+  doc["method"] = "elliptic";
+  const fs::path bad = scratch_dir() / "string_method.json";
+  std::ofstream(bad) << doc.dump();
+  for (const auto& args : {std::vector<std::string>{"info", bad.string()},
+                           std::vector<std::string>{"eval", bad.string(), "--t", "0.5"}}) {
+    const Result r = run(args);
+    EXPECT_EQ(r.status, 2) << args[0] << ": " << r.err;
+    EXPECT_NE(r.err.find("method: expected an object"), std::string::npos) << r.err;
+  }
+  // An out-of-range integer and a degree OpenCASCADE cannot store.
+  const fs::path out = scratch_dir() / "hostile.json";
+  Result r = run({"interpolate", test_data("poses/five_positions.json"), "-o", out.string(),
+                  "--translation", "trt", "--trt-degrees", "99999999999999,0"});
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("--trt-degrees"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+  const fs::path step = scratch_dir() / "hostile.step";
+  r = run(
+      {"trajectory", m.string(), "--point", "1,2,3", "-o", step.string(), "--max-degree", "30"});
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("up to 25"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(step));
 }
 
 TEST(Cli, SplineExportsCarryTheMotionsContinuityInTheirKnots) {
