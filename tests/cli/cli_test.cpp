@@ -711,6 +711,13 @@ TEST(Cli, ShellsSolidsAndUnitsReadBackExactly) {
                   1e-9 * mm_diagonal[ext] * per_mm);
     }
   }
+  // The micro sign is read as um.
+  const fs::path micro = scratch_dir() / "u_micro.json";
+  ASSERT_EQ(run({"sweep", five.string(), "--profile", "circle:3", "--units", "\xC2\xB5m", "-o",
+                 micro.string()})
+                .status,
+            0);
+  EXPECT_EQ(json::parse(slurp(micro))["units"], "um");
   // A trajectory in inches: the numbers are the millimetre numbers / 25.4.
   const fs::path tmm = scratch_dir() / "t_mm.json", tin = scratch_dir() / "t_in.json";
   ASSERT_EQ(run({"trajectory", five.string(), "--point", "1,2,3", "-o", tmm.string()}).status, 0);
