@@ -204,6 +204,12 @@ sweep::NurbsSurface<double> edge_surface(const LoadedMotion& lm,
   return sweep::to_nurbs(hs);
 }
 
+int count_poles(const std::vector<sweep::NurbsSurface<double>>& faces) {
+  int n = 0;
+  for (const auto& f : faces) n += static_cast<int>(f.points.size() * f.points.front().size());
+  return n;
+}
+
 /// A 64 x 64 lattice of triangles per face, ASCII STL.
 void write_stl(const std::string& path, const std::vector<sweep::NurbsSurface<double>>& faces,
                int n) {
@@ -395,7 +401,7 @@ std::vector<sweep::NurbsSurface<double>> sweep_nurbs(const LoadedMotion& lm,
   double tol = 0;
   auto s = compute_surfaces(lm, profile, "the profile", opt, Format::json, r, tol);
   r.faces = static_cast<int>(s.size());
-  for (const auto& f : s) r.poles += static_cast<int>(f.points.size() * f.points.front().size());
+  r.poles = count_poles(s);
   if (result) *result = r;
   return s;
 }
@@ -438,8 +444,7 @@ ExportResult export_surface(const LoadedMotion& lm, const sweep::Profile<double>
       if (r.approx_deviation) doc["approximation"] = approximation_json(opt, r, tol);
       write_file_atomic(opt.output, doc.dump(1) + "\n");
       r.faces = static_cast<int>(surfaces.size());
-      for (const auto& s : surfaces)
-        r.poles += static_cast<int>(s.points.size() * s.points.front().size());
+      r.poles = count_poles(surfaces);
       return r;
     }
     case Format::step:
@@ -453,8 +458,7 @@ ExportResult export_surface(const LoadedMotion& lm, const sweep::Profile<double>
       break;
   }
   r.faces = static_cast<int>(shell.faces.size()) + (opt.solid ? 2 : 0);
-  for (const auto& s : shell.faces)
-    r.poles += static_cast<int>(s.points.size() * s.points.front().size());
+  r.poles = count_poles(shell.faces);
   return r;
 }
 
@@ -492,6 +496,15 @@ CheckFace check_face(const sweep::NurbsSurface<double>& s,
   return c;
 }
 
+/// A curve to check, as a face of one parameter.
+CheckFace check_curve(const sweep::NurbsCurve<double>& c,
+                      std::function<Eigen::Vector3d(double, double)> value) {
+  CheckFace f{c.knots.front(), c.knots.back(), 0, 0, std::move(value)};
+  for (double w : c.weights) f.weights_positive = f.weights_positive && w > 0;
+  f.degree_u = c.degree;
+  return f;
+}
+
 }  // namespace
 
 json check_geometry(const std::string& file, const LoadedMotion& lm,
@@ -520,11 +533,7 @@ json check_geometry(const std::string& file, const LoadedMotion& lm,
       }
     } else {
       const auto c = curve_from_json(doc, file);
-      CheckFace cf{c.knots.front(), c.knots.back(), 0, 0,
-                   [c](double t, double) { return sweep::evaluate(c, t); }};
-      for (double w : c.weights) cf.weights_positive = cf.weights_positive && w > 0;
-      cf.degree_u = c.degree;
-      faces.push_back(cf);
+      faces.push_back(check_curve(c, [c](double t, double) { return sweep::evaluate(c, t); }));
     }
     out["reader"] = "qmotion JSON";
   } else {
@@ -540,10 +549,7 @@ json check_geometry(const std::string& file, const LoadedMotion& lm,
         faces.push_back(check_face(cf.surface, cf.value));
       }
     } else {
-      CheckFace cf{g.curve.knots.front(), g.curve.knots.back(), 0, 0, g.value};
-      for (double w : g.curve.weights) cf.weights_positive = cf.weights_positive && w > 0;
-      cf.degree_u = g.curve.degree;
-      faces.push_back(cf);
+      faces.push_back(check_curve(g.curve, g.value));
     }
     out["reader"] = "OpenCASCADE " + std::string(e == ".igs" || e == ".iges" ? "IGES" : "STEP");
     out["valid"] = g.valid;

@@ -33,9 +33,9 @@ json numbers_json(const std::vector<Scalar>& t) {
 }
 
 template <typename Scalar>
-json run_interpolation(const std::vector<kernel::Pose<Scalar>>& poses, const std::vector<Scalar>& t,
+void run_interpolation(const std::vector<kernel::Pose<Scalar>>& poses, const std::vector<Scalar>& t,
                        const kernel::InterpolationOptions& opt, json method,
-                       const std::string& units, std::string& summary) {
+                       const std::string& units, InterpolatedMotion& out) {
   const auto r = kernel::interpolate_bezier(poses, t, opt);
   method["parameters"] = numbers_json(t);
   method["rotation_degree"] = r.k;
@@ -62,8 +62,9 @@ json run_interpolation(const std::vector<kernel::Pose<Scalar>>& poses, const std
   os << "bezier, degree " << r.motion.degree() << ", order "
      << kernel::construction_order(opt.translation, r.k, r.l1, std::max(r.l2, 0))
      << ", max residual " << worst;
-  summary = os.str();
-  return motion_to_json(r.motion, method, units);
+  out.summary = os.str();
+  out.poles = kernel::find_poles(r.motion);
+  out.document = motion_to_json(r.motion, method, units);
 }
 
 /// Rows of numbers for a spline's poles, and its knots, into the method record.
@@ -76,10 +77,10 @@ void record_spline(json& method, const std::string& name, const kernel::BSpline<
 }
 
 template <typename Scalar>
-json run_spline_interpolation(const std::vector<kernel::Pose<Scalar>>& poses,
+void run_spline_interpolation(const std::vector<kernel::Pose<Scalar>>& poses,
                               const std::vector<Scalar>& t, const std::string& form,
                               const kernel::SplineOptions& sopt, json method,
-                              const std::string& units, std::string& summary) {
+                              const std::string& units, InterpolatedMotion& out) {
   kernel::SplineInterpolation<Scalar> r = [&] {
     if constexpr (kernel::is_exact_v<Scalar>) {
       return kernel::interpolate_bspline(poses, t, sopt);
@@ -106,8 +107,9 @@ json run_spline_interpolation(const std::vector<kernel::Pose<Scalar>>& poses,
   os << form << ", degree " << r.motion.degree() << ", " << r.motion.segments()
      << " segments, order " << kernel::construction_order(sopt.translation, r.k, r.l)
      << ", max residual " << worst;
-  summary = os.str();
-  return motion_to_json(r.motion, method, units);
+  out.summary = os.str();
+  out.poles = kernel::find_poles(r.motion);
+  out.document = motion_to_json(r.motion, method, units);
 }
 
 }  // namespace
@@ -212,8 +214,7 @@ InterpolatedMotion interpolate(const PoseSet& set, const InterpolateOptions& arg
     const auto d = opt.trt_degrees.value_or(std::make_pair(m - 1, 0));
     method["trt_degrees"] = {d.first, d.second};
   }
-  std::string summary;
-  json doc;
+  InterpolatedMotion out;
   if (args.exact) {
 #ifdef QMOTION_WITH_CGAL
     const auto poses_e = to_poses_exact(set);
@@ -223,18 +224,22 @@ InterpolatedMotion interpolate(const PoseSet& set, const InterpolateOptions& arg
     if (*rule == kernel::ParamRule::uniform)
       for (std::size_t i = 0; i < count; ++i)
         te[i] = kernel::Rational(static_cast<long>(i)) / kernel::Rational(static_cast<long>(m));
-    doc = spline ? run_spline_interpolation(poses_e, te, form, sopt, method, set.units, summary)
-                 : run_interpolation(poses_e, te, opt, method, set.units, summary);
+    if (spline) {
+      run_spline_interpolation(poses_e, te, form, sopt, method, set.units, out);
+    } else {
+      run_interpolation(poses_e, te, opt, method, set.units, out);
+    }
 #else
     throw Error(Errc::invalid_input,
                 "--exact: this build has no exact arithmetic (QMOTION_WITH_CGAL=OFF)");
 #endif
   } else {
-    doc = spline ? run_spline_interpolation(poses_d, t, form, sopt, method, set.units, summary)
-                 : run_interpolation(poses_d, t, opt, method, set.units, summary);
+    if (spline) {
+      run_spline_interpolation(poses_d, t, form, sopt, method, set.units, out);
+    } else {
+      run_interpolation(poses_d, t, opt, method, set.units, out);
+    }
   }
-  InterpolatedMotion out{std::move(doc), summary, {}};
-  out.poles = kernel::find_poles(to_motion_double(parse_motion(out.document, "the new motion")));
   return out;
 }
 

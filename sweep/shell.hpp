@@ -33,32 +33,30 @@ std::vector<KnotPiece<Scalar>> c0_pieces(const std::vector<Scalar>& T, int degre
   const std::size_t p = static_cast<std::size_t>(degree);
   const std::size_t n = T.size() - p - 1;  // poles
   std::vector<KnotPiece<Scalar>> pieces;
-  // The current piece starts at pole start_pole; T[start_knot + p] is its first knot value.
-  std::size_t start_pole = 0, start_knot = 0;
+  // The current piece starts at pole `start`; T[start + p] is its first knot value.
+  std::size_t start = 0;
   std::size_t r = p + 1;
   while (r < n) {  // interior knots T[p+1 .. n-1]
     std::size_t m = 1;
     while (r + m < n && T[r + m] == T[r]) ++m;
     if (m >= p && p > 0) {
       KnotPiece<Scalar> piece;
-      piece.first = start_pole;
-      piece.count = r - start_pole;  // poles before the split
-      piece.knots.assign(p + 1, T[start_knot + p]);
-      piece.knots.insert(piece.knots.end(),
-                         T.begin() + static_cast<std::ptrdiff_t>(start_knot + p + 1),
+      piece.first = start;
+      piece.count = r - start;  // poles before the split
+      piece.knots.assign(p + 1, T[start + p]);
+      piece.knots.insert(piece.knots.end(), T.begin() + static_cast<std::ptrdiff_t>(start + p + 1),
                          T.begin() + static_cast<std::ptrdiff_t>(r));
       piece.knots.insert(piece.knots.end(), p + 1, T[r]);
       pieces.push_back(std::move(piece));
-      start_pole = r + m - p - 1;
-      start_knot = r + m - p - 1;
+      start = r + m - p - 1;
     }
     r += m;
   }
   KnotPiece<Scalar> last;
-  last.first = start_pole;
-  last.count = n - start_pole;
-  last.knots.assign(p + 1, T[start_knot + p]);
-  last.knots.insert(last.knots.end(), T.begin() + static_cast<std::ptrdiff_t>(start_knot + p + 1),
+  last.first = start;
+  last.count = n - start;
+  last.knots.assign(p + 1, T[start + p]);
+  last.knots.insert(last.knots.end(), T.begin() + static_cast<std::ptrdiff_t>(start + p + 1),
                     T.end());
   pieces.push_back(std::move(last));
   return pieces;

@@ -4,6 +4,7 @@
 #pragma once
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <qmotion/io/export.hpp>
 
 namespace qmotion::cli {
 
@@ -11,6 +12,19 @@ struct Command {
   CLI::App* app;             ///< the subcommand (true when it was given)
   std::function<int()> run;  ///< runs it; returns the exit status, throws qmotion::Error
 };
+
+/// The options of trajectory and sweep that shape the exported geometry: --max-degree,
+/// --tol, --units.
+inline void add_geometry_options(CLI::App* sub, io::ExportOptions& o) {
+  sub->add_option("--max-degree", o.max_degree,
+                  "Approximate along the motion (measured, within --tol) above degree D");
+  sub->add_option(
+      "--tol", o.tol,
+      "Approximation tolerance in length units (default 1e-6 of the bounding-box diagonal)");
+  sub->add_option("--units", o.units,
+                  "Convert the numbers from the motion's unit into U and declare U: mm, cm, m, "
+                  "um, in, ft (default: the motion's)");
+}
 
 Command add_info(CLI::App& app);
 Command add_eval(CLI::App& app);

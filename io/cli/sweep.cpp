@@ -26,14 +26,7 @@ Command add_sweep(CLI::App& app) {
       ->required();
   sub->add_option("-o,--output", o->options.output, "Output .json, .step/.stp, .igs/.iges or .stl")
       ->required();
-  sub->add_option("--max-degree", o->options.max_degree,
-                  "Approximate along the motion (measured, within --tol) above degree D");
-  sub->add_option(
-      "--tol", o->options.tol,
-      "Approximation tolerance in length units (default 1e-6 of the bounding-box diagonal)");
-  sub->add_option("--units", o->options.units,
-                  "Convert the numbers from the motion's unit into U and declare U: mm, cm, m, "
-                  "um, in, ft (default: the motion's)");
+  add_geometry_options(sub, o->options);
   sub->add_flag("--single-face", o->options.single_face,
                 "STEP/IGES: one face per profile edge instead of a shell of C1 faces split at the "
                 "C0 knots");

@@ -20,14 +20,7 @@ Command add_trajectory(CLI::App& app) {
   sub->add_option("--point", o->point, "Point x,y,z of the moving space")->required();
   sub->add_option("-o,--output", o->options.output, "Output .json, .step/.stp or .igs/.iges")
       ->required();
-  sub->add_option("--max-degree", o->options.max_degree,
-                  "Approximate (measured, within --tol) when the exact degree is above D");
-  sub->add_option(
-      "--tol", o->options.tol,
-      "Approximation tolerance in length units (default 1e-6 of the bounding-box diagonal)");
-  sub->add_option("--units", o->options.units,
-                  "Convert the numbers from the motion's unit into U and declare U: mm, cm, m, "
-                  "um, in, ft (default: the motion's)");
+  add_geometry_options(sub, o->options);
   return {sub, [o] {
             const auto r = io::export_trajectory(io::load_motion(o->motion),
                                                  io::parse_point(o->point, "--point"), o->options);
