@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <functional>
 #include <qmotion/io/export.hpp>
+#include <string>
 
 namespace qmotion::cli {
 
@@ -24,6 +25,13 @@ inline void add_geometry_options(CLI::App* sub, io::ExportOptions& o) {
   sub->add_option("--units", o.units,
                   "Convert the numbers from the motion's unit into U and declare U: mm, cm, m, "
                   "um, in, ft (default: the motion's)");
+}
+
+/// ", approximation with measured deviation D" when the export approximated, else "".
+inline std::string approximation_note(const io::ExportResult& r) {
+  return r.approx_deviation
+             ? ", approximation with measured deviation " + std::to_string(*r.approx_deviation)
+             : std::string();
 }
 
 Command add_info(CLI::App& app);

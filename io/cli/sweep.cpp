@@ -42,10 +42,7 @@ Command add_sweep(CLI::App& app) {
                   << r.faces << (r.faces == 1 ? " face, " : " faces, ") << r.poles << " poles, "
                   << r.units
                   << (r.volume ? ", solid of volume " + std::to_string(*r.volume) : std::string(""))
-                  << (r.approx_deviation ? ", approximation with measured deviation " +
-                                               std::to_string(*r.approx_deviation)
-                                         : std::string(""))
-                  << ")\n";
+                  << approximation_note(r) << ")\n";
         return 0;
       }};
 }

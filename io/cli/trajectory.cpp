@@ -27,10 +27,7 @@ Command add_trajectory(CLI::App& app) {
             std::cerr << "qmotion: wrote " << r.path << " (degree " << r.degree_u << ", C"
                       << r.continuity_u << ", " << r.poles << " poles, " << r.units << ", "
                       << r.inserted_knots << " knots inserted for positive weights"
-                      << (r.approx_deviation ? ", approximation with measured deviation " +
-                                                   std::to_string(*r.approx_deviation)
-                                             : std::string(""))
-                      << ")\n";
+                      << approximation_note(r) << ")\n";
             return 0;
           }};
 }
