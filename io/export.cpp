@@ -49,14 +49,14 @@ std::string fmt(double x) {
   return os.str();
 }
 
-void refuse_poles(const LoadedMotion& lm) {
-  const auto poles = kernel::find_poles(lm.motion);
+void refuse_poles(const kernel::Motion<double>& lm) {
+  const auto poles = kernel::find_poles(lm.curve);
   if (poles.empty()) return;
   std::ostringstream os;
   os.precision(12);
   for (double p : poles) os << " " << p;
   throw Error(Errc::numerical_failure,
-              lm.file.source + ": the motion has a pole (zero rotational part) at t =" + os.str() +
+              lm.label() + ": the motion has a pole (zero rotational part) at t =" + os.str() +
                   ": its trajectories run to infinity there and cannot be exported");
 }
 
@@ -106,12 +106,12 @@ std::vector<Eigen::Vector3d> curve_samples(const kernel::BSpline<Eigen::Vector4d
   return s;
 }
 
-ExportInfo export_info(const LoadedMotion& lm, const ExportOptions& opt, const std::string& what) {
+ExportInfo export_info(const kernel::Motion<double>& lm, const ExportOptions& opt,
+                       const std::string& what) {
   ExportInfo info;
-  info.units = opt.units.empty() ? lm.file.units : opt.units;
+  info.units = opt.units.empty() ? lm.units : opt.units;
   info.product = "qmotion " + what;
-  info.description =
-      what + " of motion " + std::filesystem::path(lm.file.source).filename().string();
+  info.description = what + " of motion " + std::filesystem::path(lm.label()).filename().string();
   return info;
 }
 
@@ -129,9 +129,9 @@ void scale_points(sweep::NurbsSurface<double>& s, double k) {
 }
 
 /// The declared unit and the factor from the motion's unit into it (--units converts).
-void resolve_units(const LoadedMotion& lm, const ExportOptions& opt, ExportResult& r) {
-  r.units = opt.units.empty() ? lm.file.units : canonical_unit(opt.units, "--units");
-  r.unit_factor = unit_factor(lm.file.units, r.units);
+void resolve_units(const kernel::Motion<double>& lm, const ExportOptions& opt, ExportResult& r) {
+  r.units = opt.units.empty() ? lm.units : canonical_unit(opt.units, "--units");
+  r.unit_factor = unit_factor(lm.units, r.units);
 }
 
 /// The JSON record of an approximation (tolerance and deviation in the declared unit).
@@ -145,7 +145,7 @@ json approximation_json(const ExportOptions& opt, const ExportResult& r, double 
 
 /// The exact (or --max-degree approximated) surface of one profile edge, in the motion's
 /// unit; `tol_used` receives the approximation tolerance.
-sweep::NurbsSurface<double> edge_surface(const LoadedMotion& lm,
+sweep::NurbsSurface<double> edge_surface(const kernel::Motion<double>& lm,
                                          const sweep::NurbsCurve<double>& profile,
                                          const ExportOptions& opt, Format f, ExportResult& r,
                                          double& tol_used) {
@@ -155,7 +155,7 @@ sweep::NurbsSurface<double> edge_surface(const LoadedMotion& lm,
       X.emplace_back(profile.weights[j], profile.weights[j] * profile.points[j](0),
                      profile.weights[j] * profile.points[j](1),
                      profile.weights[j] * profile.points[j](2));
-    const auto cols = sweep::trajectories(lm.motion, lm.factors, X);
+    const auto cols = sweep::trajectories(lm, X);
     if (cols.front().degree() > opt.max_degree) {
       double diag = 0;
       for (const auto& c : cols) diag = std::max(diag, diagonal(curve_samples(c, 100)));
@@ -182,11 +182,11 @@ sweep::NurbsSurface<double> edge_surface(const LoadedMotion& lm,
         dev = 0;
         for (int i = 0; i <= 80; ++i)
           for (int j = 0; j <= 80; ++j) {
-            const double u = lm.motion.a() + (lm.motion.b() - lm.motion.a()) * i / 80.0;
+            const double u = lm.curve.a() + (lm.curve.b() - lm.curve.a()) * i / 80.0;
             const double v =
                 profile.knots.front() + (profile.knots.back() - profile.knots.front()) * j / 80.0;
             const auto exact =
-                kernel::apply_point(kernel::evaluate(lm.motion, u), sweep::evaluate(profile, v));
+                kernel::apply_point(kernel::evaluate(lm.curve, u), sweep::evaluate(profile, v));
             dev = std::max(dev, (sweep::evaluate(s, u, v) - exact).norm());
           }
       }
@@ -199,7 +199,7 @@ sweep::NurbsSurface<double> edge_surface(const LoadedMotion& lm,
       return s;
     }
   }
-  const auto hs = sweep::kinematic_surface(lm.motion, lm.factors, profile);
+  const auto hs = sweep::kinematic_surface(lm, profile);
   check_degree(hs.degree_u, "the surface (along the motion)", f, opt);
   return sweep::to_nurbs(hs);
 }
@@ -254,20 +254,12 @@ Eigen::Vector3d parse_point(const std::string& text, const std::string& flag) {
   return Eigen::Vector3d(v[0], v[1], v[2]);
 }
 
-LoadedMotion load_motion(const MotionFile& file) {
-  LoadedMotion lm{file, to_motion_double(file), std::nullopt};
-  lm.factors = factors_double(file, lm.motion);
-  return lm;
-}
-
-LoadedMotion load_motion(const std::string& path) { return load_motion(read_motion(path)); }
-
 namespace {
 
 /// The trajectory NURBS in the declared unit, filling r; f decides the degree limit.
-sweep::NurbsCurve<double> compute_trajectory(const LoadedMotion& lm, const Eigen::Vector3d& point,
-                                             const ExportOptions& opt, Format f, ExportResult& r,
-                                             double& tol) {
+sweep::NurbsCurve<double> compute_trajectory(const kernel::Motion<double>& lm,
+                                             const Eigen::Vector3d& point, const ExportOptions& opt,
+                                             Format f, ExportResult& r, double& tol) {
   check_max_degree(opt, f);
   refuse_poles(lm);
   resolve_units(lm, opt, r);
@@ -275,7 +267,7 @@ sweep::NurbsCurve<double> compute_trajectory(const LoadedMotion& lm, const Eigen
                       ? sweep::trajectory_from_factors(
                             *lm.factors, sweep::Vec4<double>(1, point(0), point(1), point(2)))
                       : sweep::trajectory_from_motion(
-                            lm.motion, sweep::Vec4<double>(1, point(0), point(1), point(2)));
+                            lm.curve, sweep::Vec4<double>(1, point(0), point(1), point(2)));
   auto h = h0;
   if (opt.max_degree > 0 && h.degree() > opt.max_degree) {
     tol = opt.tol > 0 ? opt.tol : 1e-6 * std::max(diagonal(curve_samples(h0, 200)), 1e-300);
@@ -299,8 +291,9 @@ sweep::NurbsCurve<double> compute_trajectory(const LoadedMotion& lm, const Eigen
 
 }  // namespace
 
-sweep::NurbsCurve<double> trajectory_nurbs(const LoadedMotion& lm, const Eigen::Vector3d& point,
-                                           const ExportOptions& opt, ExportResult* result) {
+sweep::NurbsCurve<double> trajectory_nurbs(const kernel::Motion<double>& lm,
+                                           const Eigen::Vector3d& point, const ExportOptions& opt,
+                                           ExportResult* result) {
   ExportResult r;
   double tol = 0;
   auto c = compute_trajectory(lm, point, opt, Format::json, r, tol);
@@ -308,7 +301,7 @@ sweep::NurbsCurve<double> trajectory_nurbs(const LoadedMotion& lm, const Eigen::
   return c;
 }
 
-ExportResult export_trajectory(const LoadedMotion& lm, const Eigen::Vector3d& point,
+ExportResult export_trajectory(const kernel::Motion<double>& lm, const Eigen::Vector3d& point,
                                const ExportOptions& opt) {
   const Format f = output_format(opt.output, false);
   ExportResult r;
@@ -343,7 +336,7 @@ namespace {
 
 /// The surfaces of the profile's edges in the declared unit, filling r (with the solid's
 /// checks and volume for opt.solid); f decides the degree limit.
-std::vector<sweep::NurbsSurface<double>> compute_surfaces(const LoadedMotion& lm,
+std::vector<sweep::NurbsSurface<double>> compute_surfaces(const kernel::Motion<double>& lm,
                                                           const sweep::Profile<double>& profile,
                                                           const std::string& profile_name,
                                                           const ExportOptions& opt, Format f,
@@ -359,7 +352,7 @@ std::vector<sweep::NurbsSurface<double>> compute_surfaces(const LoadedMotion& lm
                                            " is open (its last edge does not end where the "
                                            "first starts); a solid needs a closed planar profile");
     const sweep::PlanarRegion region = sweep::planar_region(profile);
-    const auto back = sweep::find_backsweep(lm.motion, lm.factors, profile, region);
+    const auto back = sweep::find_backsweep(lm, profile, region);
     if (back.t) {
       std::ostringstream os;
       os.precision(12);
@@ -368,7 +361,7 @@ std::vector<sweep::NurbsSurface<double>> compute_surfaces(const LoadedMotion& lm
             "sweep is not a solid; sweep a shorter interval or drop --solid for the open shell";
       throw Error(Errc::numerical_failure, os.str());
     }
-    r.volume = sweep::swept_volume(lm.motion, region) * std::pow(r.unit_factor, 3);
+    r.volume = sweep::swept_volume(lm, region) * std::pow(r.unit_factor, 3);
   }
   std::vector<sweep::NurbsSurface<double>> surfaces;
   for (const auto& e : profile.edges) {
@@ -393,7 +386,7 @@ std::vector<sweep::NurbsSurface<double>> compute_surfaces(const LoadedMotion& lm
 
 }  // namespace
 
-std::vector<sweep::NurbsSurface<double>> sweep_nurbs(const LoadedMotion& lm,
+std::vector<sweep::NurbsSurface<double>> sweep_nurbs(const kernel::Motion<double>& lm,
                                                      const sweep::Profile<double>& profile,
                                                      const ExportOptions& opt,
                                                      ExportResult* result) {
@@ -406,7 +399,7 @@ std::vector<sweep::NurbsSurface<double>> sweep_nurbs(const LoadedMotion& lm,
   return s;
 }
 
-ExportResult export_surface(const LoadedMotion& lm, const sweep::Profile<double>& profile,
+ExportResult export_surface(const kernel::Motion<double>& lm, const sweep::Profile<double>& profile,
                             const std::string& profile_name, const ExportOptions& opt) {
   const Format f = output_format(opt.output, true);
   ExportResult r;
@@ -507,14 +500,14 @@ CheckFace check_curve(const sweep::NurbsCurve<double>& c,
 
 }  // namespace
 
-json check_geometry(const std::string& file, const LoadedMotion& lm,
+json check_geometry(const std::string& file, const kernel::Motion<double>& lm,
                     const std::optional<sweep::Profile<double>>& profile,
                     const std::optional<Eigen::Vector3d>& point, int grid) {
   const bool surface = profile.has_value();
   const std::string e = lower_ext(file);
   std::vector<CheckFace> faces;
   int planar_faces = 0;
-  std::string file_units = lm.file.units;
+  std::string file_units = lm.units;
   json out{{"file", file}, {"kind", surface ? "surface" : "curve"}};
   if (e == ".json") {
     const json doc = read_json_file(file);
@@ -539,7 +532,7 @@ json check_geometry(const std::string& file, const LoadedMotion& lm,
   } else {
     // Read in the motion's unit (OpenCASCADE converts); deviations are reported in the
     // unit the file declares.
-    const CadGeometry g = read_cad(file, surface, lm.file.units);
+    const CadGeometry g = read_cad(file, surface, lm.units);
     if (surface) {
       for (const auto& cf : g.face_list) {
         if (cf.is_plane) {
@@ -559,15 +552,14 @@ json check_geometry(const std::string& file, const LoadedMotion& lm,
     out["solids"] = g.solids;
     out["closed"] = g.closed;
     out["file_units"] = g.file_units;
-    file_units = cad_unit(g.file_units, lm.file.units);
-    if (g.solids > 0)
-      out["volume"] = g.volume * std::pow(unit_factor(lm.file.units, file_units), 3);
+    file_units = cad_unit(g.file_units, lm.units);
+    if (g.solids > 0) out["volume"] = g.volume * std::pow(unit_factor(lm.units, file_units), 3);
   }
-  // The file's numbers are in file_units; the motion's in lm.file.units. For STEP/IGES the
+  // The file's numbers are in file_units; the motion's in lm.units. For STEP/IGES the
   // reader already converted into the motion's unit: scale only the reported deviation.
   const bool cad = e != ".json";
-  const double k = unit_factor(lm.file.units, file_units);
-  const double a = lm.motion.a(), b = lm.motion.b();
+  const double k = unit_factor(lm.units, file_units);
+  const double a = lm.curve.a(), b = lm.curve.b();
   std::mt19937 rng(20261122);
   double dev = 0, u_lo = faces.front().u0, u_hi = faces.front().u1;
   bool weights_positive = true;
@@ -602,7 +594,7 @@ json check_geometry(const std::string& file, const LoadedMotion& lm,
       std::vector<Eigen::Vector3d> r_ed;
       for (std::size_t s = 0; s < params.size(); ++s) {
         const double u = std::clamp(params[s].first, a, b);
-        const auto q = kernel::evaluate(lm.motion, u);
+        const auto q = kernel::evaluate(lm.curve, u);
         const Eigen::Vector3d exact =
             kernel::apply_point(q, surface ? sweep::evaluate(edges[ed], params[s].second) : *point);
         r_ed.push_back(exact);

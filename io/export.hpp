@@ -13,16 +13,6 @@
 
 namespace qmotion::io {
 
-/// A motion file with its double motion and, when recorded and consistent, its factors.
-struct LoadedMotion {
-  MotionFile file;
-  kernel::QMotion<double> motion;
-  std::optional<sweep::MotionFactors<double>> factors;
-};
-
-LoadedMotion load_motion(const std::string& path);
-LoadedMotion load_motion(const MotionFile& file);
-
 struct ExportOptions {
   std::string output;        ///< .json, .step/.stp, .igs/.iges (surfaces also .stl)
   int max_degree = -1;       ///< approximate above this degree (-1: exact only)
@@ -51,7 +41,8 @@ struct ExportResult {
 /// (or approximated above opt.max_degree within opt.tol), in opt.units (default the
 /// motion's); nothing is written (opt.output is ignored). `result`, when given, receives
 /// degree, continuity, pole count, units and any measured deviation.
-sweep::NurbsCurve<double> trajectory_nurbs(const LoadedMotion& lm, const Eigen::Vector3d& point,
+sweep::NurbsCurve<double> trajectory_nurbs(const kernel::Motion<double>& lm,
+                                           const Eigen::Vector3d& point,
                                            const ExportOptions& opt = {},
                                            ExportResult* result = nullptr);
 
@@ -59,14 +50,14 @@ sweep::NurbsCurve<double> trajectory_nurbs(const LoadedMotion& lm, const Eigen::
 /// exact, or approximated above opt.max_degree), in opt.units; with opt.solid the profile
 /// is checked as for export (closed, planar, no back-sweep) and result->volume is set.
 /// Nothing is written.
-std::vector<sweep::NurbsSurface<double>> sweep_nurbs(const LoadedMotion& lm,
+std::vector<sweep::NurbsSurface<double>> sweep_nurbs(const kernel::Motion<double>& lm,
                                                      const sweep::Profile<double>& profile,
                                                      const ExportOptions& opt = {},
                                                      ExportResult* result = nullptr);
 
-ExportResult export_trajectory(const LoadedMotion& lm, const Eigen::Vector3d& point,
+ExportResult export_trajectory(const kernel::Motion<double>& lm, const Eigen::Vector3d& point,
                                const ExportOptions& opt);
-ExportResult export_surface(const LoadedMotion& lm, const sweep::Profile<double>& profile,
+ExportResult export_surface(const kernel::Motion<double>& lm, const sweep::Profile<double>& profile,
                             const std::string& profile_name, const ExportOptions& opt);
 
 /// The exactness check: the file's NURBS (read back through OpenCASCADE for STEP/IGES)
@@ -74,7 +65,7 @@ ExportResult export_surface(const LoadedMotion& lm, const sweep::Profile<double>
 /// grid x grid lattice plus 400 random parameters per face. Every face is matched to the
 /// profile edge it sweeps; planar faces (a solid's caps) are counted. Deviations are in
 /// the unit the file declares. JSON report.
-nlohmann::json check_geometry(const std::string& file, const LoadedMotion& lm,
+nlohmann::json check_geometry(const std::string& file, const kernel::Motion<double>& lm,
                               const std::optional<sweep::Profile<double>>& profile,
                               const std::optional<Eigen::Vector3d>& point, int grid = 41);
 

@@ -17,99 +17,34 @@ namespace {
 
 using json = nlohmann::json;
 
+/// Finishes a new motion: parametrisation name and units recorded, the document written
+/// with the poses as the user gave them, the summary and the poles.
 template <typename Scalar>
-json numbers_json(const std::vector<Scalar>& t) {
-  json a = json::array();
-  for (const auto& v : t) {
-#ifdef QMOTION_WITH_CGAL
-    if constexpr (kernel::is_exact_v<Scalar>) {
-      a.push_back(exact_to_text(v));
-      continue;
-    }
-#endif
-    a.push_back(kernel::to_double(v));
-  }
-  return a;
-}
-
-template <typename Scalar>
-void run_interpolation(const std::vector<kernel::Pose<Scalar>>& poses, const std::vector<Scalar>& t,
-                       const kernel::InterpolationOptions& opt, json method,
-                       const std::string& units, InterpolatedMotion& out) {
-  const auto r = kernel::interpolate_bezier(poses, t, opt);
-  method["parameters"] = numbers_json(t);
-  method["rotation_degree"] = r.k;
-  method["translation_degree"] =
-      opt.translation == kernel::TranslationMethod::trt ? json{r.l1, r.l2} : json(r.l1);
-  double worst = 0;
-  for (double x : r.residuals) worst = std::max(worst, x);
-  method["max_interpolation_residual"] = worst;
-  // The factors the motion is the product of, for exact minimal-degree trajectories.
-  json rot = json::array();
-  for (const auto& c : r.rotation.coeffs())
-    rot.push_back(numbers_json(std::vector<Scalar>{c.w(), c.x(), c.y(), c.z()}));
-  method["rotation_control_points"] = rot;
-  auto rows = [](const kernel::MatX<Scalar>& P) {
-    json a = json::array();
-    for (Eigen::Index j = 0; j < P.rows(); ++j)
-      a.push_back(numbers_json(std::vector<Scalar>{P(j, 0), P(j, 1), P(j, 2)}));
-    return a;
-  };
-  method["translation_control_points"] = rows(r.translation);
-  if (opt.translation == kernel::TranslationMethod::trt)
-    method["translation2_control_points"] = rows(r.translation2);
+InterpolatedMotion finish(kernel::Motion<Scalar> m, const std::string& param, const PoseSet& set) {
+  m.units = set.units;
+  m.provenance->param = param;
+  const auto& p = *m.provenance;
   std::ostringstream os;
-  os << "bezier, degree " << r.motion.degree() << ", order "
-     << kernel::construction_order(opt.translation, r.k, r.l1, std::max(r.l2, 0))
-     << ", max residual " << worst;
-  out.summary = os.str();
-  out.poles = kernel::find_poles(r.motion);
-  out.document = motion_to_json(r.motion, method, units);
-}
-
-/// Rows of numbers for a spline's poles, and its knots, into the method record.
-template <typename Scalar, typename Coef, typename Row>
-void record_spline(json& method, const std::string& name, const kernel::BSpline<Coef>& s, Row row) {
-  json poles = json::array();
-  for (const auto& c : s.ctrl()) poles.push_back(numbers_json(row(c)));
-  method[name + "_control_points"] = poles;
-  method[name + "_knots"] = numbers_json(s.knots());
+  os << kernel::to_string(p.form) << ", degree " << m.degree();
+  if (p.form != kernel::Form::bezier) os << ", " << m.segments() << " segments";
+  os << ", order "
+     << kernel::construction_order(p.translation, p.rotation_degree, p.translation_degree,
+                                   std::max(p.translation_degree2, 0))
+     << ", max residual " << p.max_residual();
+  return InterpolatedMotion{kernel::to_double(m), motion_document(m, poses_to_json(set)), os.str(),
+                            kernel::find_poles(m.curve)};
 }
 
 template <typename Scalar>
-void run_spline_interpolation(const std::vector<kernel::Pose<Scalar>>& poses,
-                              const std::vector<Scalar>& t, const std::string& form,
-                              const kernel::SplineOptions& sopt, json method,
-                              const std::string& units, InterpolatedMotion& out) {
-  kernel::SplineInterpolation<Scalar> r = [&] {
-    if constexpr (kernel::is_exact_v<Scalar>) {
-      return kernel::interpolate_bspline(poses, t, sopt);
-    } else {
-      return form == "c1" ? kernel::interpolate_c1(poses, t, sopt.translation, sopt.max_residual)
-                          : kernel::interpolate_bspline(poses, t, sopt);
-    }
-  }();
-  method["parameters"] = numbers_json(t);
-  method["rotation_degree"] = r.k;
-  method["translation_degree"] = r.l;
-  double worst = 0;
-  for (double x : r.residuals) worst = std::max(worst, x);
-  method["max_interpolation_residual"] = worst;
-  using V3 = Eigen::Matrix<Scalar, 3, 1>;
-  record_spline<Scalar>(method, "rotation", r.factors.rotation,
-                        [](const kernel::Quaternion<Scalar>& q) {
-                          return std::vector<Scalar>{q.w(), q.x(), q.y(), q.z()};
-                        });
-  record_spline<Scalar>(method, "translation", r.factors.translation, [](const V3& v) {
-    return std::vector<Scalar>{v(0), v(1), v(2)};
-  });
-  std::ostringstream os;
-  os << form << ", degree " << r.motion.degree() << ", " << r.motion.segments()
-     << " segments, order " << kernel::construction_order(sopt.translation, r.k, r.l)
-     << ", max residual " << worst;
-  out.summary = os.str();
-  out.poles = kernel::find_poles(r.motion);
-  out.document = motion_to_json(r.motion, method, units);
+kernel::Motion<Scalar> run(const std::vector<kernel::Pose<Scalar>>& poses,
+                           const std::vector<Scalar>& t, kernel::Form form,
+                           const kernel::InterpolationOptions& opt,
+                           const kernel::SplineOptions& sopt) {
+  if (form == kernel::Form::bezier) return kernel::interpolate_bezier(poses, t, opt);
+  if constexpr (!kernel::is_exact_v<Scalar>)
+    if (form == kernel::Form::c1)
+      return kernel::interpolate_c1(poses, t, sopt.translation, sopt.max_residual);
+  return kernel::interpolate_bspline(poses, t, sopt);
 }
 
 }  // namespace
@@ -146,7 +81,7 @@ InterpolatedMotion interpolate(const PoseSet& set, const InterpolateOptions& arg
                                      to_int(args.trt_degrees.substr(comma + 1)));
   }
   const std::string form = !args.form.empty() ? args.form : (count <= 6 ? "bezier" : "bspline");
-  if (form != "bezier" && form != "bspline" && form != "c1")
+  if (!kernel::form_from_string(form))
     throw Error(Errc::invalid_input,
                 "--form: expected bezier, bspline or c1, found '" + form + "'");
   const bool spline = form != "bezier";
@@ -204,17 +139,7 @@ InterpolatedMotion interpolate(const PoseSet& set, const InterpolateOptions& arg
   const auto poses_d = to_poses_double(set);
   const std::vector<double> t = kernel::parametrize(poses_d, *rule);
 
-  json method{{"rotation", args.rotation},
-              {"translation", args.translation},
-              {"param", kernel::to_string(*rule)},
-              {"form", form},
-              {"exact", args.exact},
-              {"input_poses", poses_to_json(set)}};
-  if (opt.translation == kernel::TranslationMethod::trt) {
-    const auto d = opt.trt_degrees.value_or(std::make_pair(m - 1, 0));
-    method["trt_degrees"] = {d.first, d.second};
-  }
-  InterpolatedMotion out;
+  const auto form_value = *kernel::form_from_string(form);
   if (args.exact) {
 #ifdef QMOTION_WITH_CGAL
     const auto poses_e = to_poses_exact(set);
@@ -224,23 +149,13 @@ InterpolatedMotion interpolate(const PoseSet& set, const InterpolateOptions& arg
     if (*rule == kernel::ParamRule::uniform)
       for (std::size_t i = 0; i < count; ++i)
         te[i] = kernel::Rational(static_cast<long>(i)) / kernel::Rational(static_cast<long>(m));
-    if (spline) {
-      run_spline_interpolation(poses_e, te, form, sopt, method, set.units, out);
-    } else {
-      run_interpolation(poses_e, te, opt, method, set.units, out);
-    }
+    return finish(run(poses_e, te, form_value, opt, sopt), kernel::to_string(*rule), set);
 #else
     throw Error(Errc::invalid_input,
                 "--exact: this build has no exact arithmetic (QMOTION_WITH_CGAL=OFF)");
 #endif
-  } else {
-    if (spline) {
-      run_spline_interpolation(poses_d, t, form, sopt, method, set.units, out);
-    } else {
-      run_interpolation(poses_d, t, opt, method, set.units, out);
-    }
   }
-  return out;
+  return finish(run(poses_d, t, form_value, opt, sopt), kernel::to_string(*rule), set);
 }
 
 }  // namespace qmotion::io

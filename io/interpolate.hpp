@@ -23,19 +23,19 @@ struct InterpolateOptions {
   bool exact = false;                 ///< CGAL::Exact_rational (quaternion rotations)
 };
 
-/// A new motion: its file document (SPEC §5: the curve, the factors it is the product
-/// of, the method with the input poses), a one-line summary, and the poles on its interval
-/// (zeros of the rotational part; trajectories cannot be exported through them).
+/// A new motion: the motion value, its file document (SPEC §5: the curve, the factors it
+/// is the product of, the method with the input poses as given), a one-line summary, and the poles
+/// on its interval (zeros of the rotational part; trajectories cannot be exported through them).
 struct InterpolatedMotion {
-  nlohmann::json document;
+  kernel::Motion<double> motion;  ///< the motion (converted to double under --exact)
+  nlohmann::json document;        ///< its file; exact numbers under --exact
   std::string summary;
   std::vector<double> poles;
 };
 
 /// A Q-motion through the poses (Jüttler 1994; SPEC §2). Throws Errc::invalid_input for
 /// bad options (naming the option, as the CLI does) and Errc::numerical_failure for
-/// refused systems. `parse_motion(result.document, name)` and `load_motion` turn the
-/// document into the motion the export calls take.
+/// refused systems. `result.motion` is what the sweep and export calls take.
 InterpolatedMotion interpolate(const PoseSet& poses, const InterpolateOptions& options);
 
 }  // namespace qmotion::io

@@ -8,6 +8,7 @@
 #include <qmotion/io/json_number.hpp>
 #include <qmotion/io/poses.hpp>
 #include <qmotion/kernel/error.hpp>
+#include <qmotion/kernel/interpolation.hpp>
 #include <qmotion/kernel/motion.hpp>
 #include <qmotion/kernel/order.hpp>
 
@@ -18,11 +19,13 @@ using json = nlohmann::json;
 
 json vec_json(const Eigen::Vector3d& v) { return json{v(0), v(1), v(2)}; }
 
+#ifdef QMOTION_WITH_CGAL
 /// The recorded input poses of a motion file's method, if any.
 std::optional<PoseSet> recorded_poses(const MotionFile& f) {
   if (!f.method.is_object() || !f.method.contains("input_poses")) return std::nullopt;
   return parse_poses_json_value(f.method["input_poses"], f.source + ": method.input_poses");
 }
+#endif
 
 /// Residual of the motion at every recorded pose (null when a parameter is missing). Exact
 /// Scalar: 0 where Q(t_i) is exactly proportional to P_i, else the double residual.
@@ -53,29 +56,11 @@ json interpolation_residuals(const kernel::QMotion<Scalar>& m,
   return json(kernel::pose_residuals(m, P, ts));
 }
 
-/// The order a recorded interpolation method guarantees (kernel::construction_order).
-std::optional<int> recorded_order(const json& method) {
-  if (!method.is_object() || !method.contains("rotation_degree") ||
-      !method.contains("translation") || !method.contains("translation_degree"))
-    return std::nullopt;
-  const json& k = method["rotation_degree"];
-  const json& l = method["translation_degree"];
-  const json& tr = method["translation"];
-  if (!k.is_number_integer() || !tr.is_string()) return std::nullopt;
-  const auto m = kernel::translation_method_from_string(tr.get<std::string>());
-  if (!m) return std::nullopt;
-  if (*m == kernel::TranslationMethod::trt && l.is_array() && l.size() == 2 &&
-      l[0].is_number_integer() && l[1].is_number_integer())
-    return kernel::construction_order(*m, k.get<int>(), l[0].get<int>(), l[1].get<int>());
-  if (*m != kernel::TranslationMethod::trt && l.is_number_integer())
-    return kernel::construction_order(*m, k.get<int>(), l.get<int>());
-  return std::nullopt;
-}
-
 }  // namespace
 
 json motion_info(const MotionFile& f, bool exact) {
-  const kernel::QMotion<double> m = to_motion_double(f);
+  const kernel::Motion<double> motion = to_motion(f);  // also validates the method block
+  const kernel::QMotion<double>& m = motion.curve;
   json out;
   out["type"] = "q-motion";
   out["basis"] = m.basis == kernel::Basis::bezier ? "bezier" : "bspline";
@@ -83,7 +68,10 @@ json motion_info(const MotionFile& f, bool exact) {
   // Order: degree of a general point's trajectory with every common factor removed.
   // --exact: exactly from the file's digits. Otherwise: what the recorded construction
   // guarantees, or, for motions without one, a numerical rank.
-  const auto recorded = recorded_order(f.method);
+  std::optional<int> recorded;
+  if (const auto& p = motion.provenance)
+    recorded = kernel::construction_order(p->translation, p->rotation_degree, p->translation_degree,
+                                          std::max(p->translation_degree2, 0));
 #ifdef QMOTION_WITH_CGAL
   if (exact) {
     out["order"] = kernel::motion_order(to_motion_exact(f));
@@ -114,15 +102,13 @@ json motion_info(const MotionFile& f, bool exact) {
   out["plucker_residual"] = kernel::plucker_residual(m);
 #endif
   json res = nullptr;
-  if (const auto poses = recorded_poses(f)) {
+  if (motion.provenance) res = motion.provenance->residuals;
 #ifdef QMOTION_WITH_CGAL
-    res = exact ? interpolation_residuals(to_motion_exact(f), to_poses_exact(*poses), f,
-                                          kernel::Rational(0))
-                : interpolation_residuals(m, to_poses_double(*poses), f, 0.0);
-#else
-    res = interpolation_residuals(m, to_poses_double(*poses), f, 0.0);
+  if (exact)
+    if (const auto poses = recorded_poses(f))
+      res = interpolation_residuals(to_motion_exact(f), to_poses_exact(*poses), f,
+                                    kernel::Rational(0));
 #endif
-  }
   out["interpolation_residual"] = res;
   out["poles"] = kernel::find_poles(m);
   if (!f.method.is_null()) {

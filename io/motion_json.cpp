@@ -1,7 +1,9 @@
 // io/motion_json.cpp
+#include <qmotion/io/atomic_file.hpp>
 #include <qmotion/io/motion_json.hpp>
 #include <qmotion/io/poses.hpp>
 #include <qmotion/kernel/error.hpp>
+#include <qmotion/kernel/interpolation.hpp>
 
 #ifdef QMOTION_WITH_CGAL
 #include <qmotion/io/exact_number.hpp>
@@ -118,6 +120,132 @@ std::optional<sweep::MotionFactors<Scalar>> read_factors(const MotionFile& f,
   if (!sweep::factors_match(out, m))
     return std::nullopt;  // edited apart from the motion: not trusted
   return out;
+}
+
+/// The method block of a motion value: provenance, then the factors (with their knots for
+/// spline motions). Null when the motion has neither.
+template <typename Scalar, typename NumOut>
+json method_json(const kernel::Motion<Scalar>& m, const json& input_poses, NumOut num) {
+  if (!m.provenance && !m.factors) return nullptr;
+  json method = json::object();
+  auto numbers = [&](const std::vector<Scalar>& v) {
+    json a = json::array();
+    for (const auto& x : v) a.push_back(num(x));
+    return a;
+  };
+  if (m.provenance) {
+    const auto& p = *m.provenance;
+    method["form"] = kernel::to_string(p.form);
+    method["rotation"] = kernel::to_string(p.rotation);
+    method["translation"] = kernel::to_string(p.translation);
+    if (!p.param.empty()) method["param"] = p.param;
+    method["exact"] = kernel::is_exact_v<Scalar>;
+    if (!input_poses.is_null()) {
+      method["input_poses"] = input_poses;
+    } else {
+      std::vector<kernel::Pose<double>> poses;
+      for (const auto& x : p.poses) poses.push_back(kernel::pose_to_double(x));
+      method["input_poses"] = poses_to_json(poses, m.units);
+    }
+    method["parameters"] = numbers(p.parameters);
+    method["rotation_degree"] = p.rotation_degree;
+    if (p.translation == kernel::TranslationMethod::trt) {
+      method["translation_degree"] = {p.translation_degree, p.translation_degree2};
+      method["trt_degrees"] = {p.translation_degree, p.translation_degree2};
+    } else {
+      method["translation_degree"] = p.translation_degree;
+    }
+    method["max_interpolation_residual"] = p.max_residual();
+  }
+  if (m.factors) {
+    const auto& f = *m.factors;
+    if (!m.provenance) method["translation"] = kernel::to_string(f.method);
+    const bool spline = m.curve.basis == kernel::Basis::bspline;
+    json rot = json::array();
+    for (const auto& c : f.rotation.ctrl())
+      rot.push_back(numbers(std::vector<Scalar>{c.w(), c.x(), c.y(), c.z()}));
+    method["rotation_control_points"] = rot;
+    if (spline) method["rotation_knots"] = numbers(f.rotation.knots());
+    auto vec = [&](const char* name, const kernel::BSpline<Eigen::Matrix<Scalar, 3, 1>>& v) {
+      json a = json::array();
+      for (const auto& c : v.ctrl()) a.push_back(numbers(std::vector<Scalar>{c(0), c(1), c(2)}));
+      method[std::string(name) + "_control_points"] = a;
+      if (spline) method[std::string(name) + "_knots"] = numbers(v.knots());
+    };
+    vec("translation", f.translation);
+    if (f.translation2) vec("translation2", *f.translation2);
+  }
+  return method;
+}
+
+/// Refuses a recorded method field that is present but malformed.
+[[noreturn]] void bad_method_field(const std::string& source, const std::string& field,
+                                   const std::string& expected) {
+  throw Error(Errc::invalid_input,
+              source + ": method." + field + ": expected " + expected +
+                  "; regenerate the file with `qmotion interpolate` from its poses, or delete "
+                  "the method block to use the motion as hand-written");
+}
+
+/// The provenance a method block records, when it records one completely.
+std::optional<kernel::Provenance<double>> read_provenance(
+    const MotionFile& f, const kernel::QMotion<double>& curve,
+    const std::optional<sweep::MotionFactors<double>>& fac) {
+  const json& me = f.method;
+  for (const char* key : {"form", "rotation", "translation", "parameters", "input_poses",
+                          "rotation_degree", "translation_degree"})
+    if (!me.is_object() || !me.contains(key)) return std::nullopt;
+  kernel::Provenance<double> p;
+  auto name = [&](const char* key) {
+    return me[key].is_string() ? me[key].get<std::string>() : std::string();
+  };
+  const auto form = kernel::form_from_string(name("form"));
+  if (!form) bad_method_field(f.source, "form", "bezier, bspline or c1");
+  p.form = *form;
+  const auto rot = kernel::rotation_method_from_string(name("rotation"));
+  if (!rot) bad_method_field(f.source, "rotation", "elliptic, affine or projective");
+  p.rotation = *rot;
+  const auto tr = kernel::translation_method_from_string(name("translation"));
+  if (!tr) bad_method_field(f.source, "translation", "tr, trt or minimal");
+  p.translation = *tr;
+  if (me.contains("param")) p.param = name("param");
+  const json& rd = me["rotation_degree"];
+  if (!rd.is_number_integer() || rd.get<long long>() < 0 || rd.get<long long>() > 200)
+    bad_method_field(f.source, "rotation_degree", "an integer from 0 to 200");
+  p.rotation_degree = rd.get<int>();
+  const json& td = me["translation_degree"];
+  auto degree = [&](const json& j) {
+    if (!j.is_number_integer() || j.get<long long>() < 0 || j.get<long long>() > 200)
+      bad_method_field(f.source, "translation_degree",
+                       p.translation == kernel::TranslationMethod::trt
+                           ? "[L1, L2], integers from 0 to 200"
+                           : "an integer from 0 to 200");
+    return j.get<int>();
+  };
+  if (p.translation == kernel::TranslationMethod::trt) {
+    if (!td.is_array() || td.size() != 2) degree(json());
+    p.translation_degree = degree(td[0]);
+    p.translation_degree2 = degree(td[1]);
+  } else {
+    p.translation_degree = degree(td);
+  }
+  if (!me["parameters"].is_array()) bad_method_field(f.source, "parameters", "an array of numbers");
+  for (std::size_t i = 0; i < me["parameters"].size(); ++i)
+    p.parameters.push_back(read_number(me["parameters"][i],
+                                       f.source + ": method.parameters[" + std::to_string(i) + "]")
+                               .value);
+  const PoseSet set = parse_poses_json_value(me["input_poses"], f.source + ": method.input_poses");
+  p.poses = to_poses_double(set);
+  if (p.parameters.size() != p.poses.size())
+    bad_method_field(f.source, "parameters",
+                     "one parameter per input pose (" + std::to_string(p.poses.size()) + ")");
+  for (std::size_t i = 1; i < p.parameters.size(); ++i)
+    if (!(p.parameters[i - 1] < p.parameters[i]))
+      bad_method_field(f.source, "parameters", "strictly increasing numbers");
+  p.residuals = kernel::pose_residuals(curve, p.poses, p.parameters);
+  if (p.form == kernel::Form::bezier && fac)
+    p.near_inaccessible = kernel::near_inaccessible(fac->rotation, p.parameters);
+  return p;
 }
 
 }  // namespace
@@ -251,6 +379,24 @@ json motion_to_json(const kernel::QMotion<double>& m, const json& method,
   return motion_json(m, method, units, [](double v) { return json(v); });
 }
 
+kernel::Motion<double> to_motion(const MotionFile& f) {
+  kernel::Motion<double> m(to_motion_double(f), std::nullopt, std::nullopt, f.units, f.source);
+  m.factors = factors_double(f, m.curve);
+  m.provenance = read_provenance(f, m.curve, m.factors);
+  return m;
+}
+
+kernel::Motion<double> load_motion(const std::string& path) { return to_motion(read_motion(path)); }
+
+json motion_document(const kernel::Motion<double>& m, const json& input_poses) {
+  return motion_to_json(m.curve, method_json(m, input_poses, [](double v) { return json(v); }),
+                        m.units);
+}
+
+void save_motion(const kernel::Motion<double>& m, const std::string& path) {
+  write_file_atomic(path, motion_document(m).dump(1) + "\n");
+}
+
 #ifdef QMOTION_WITH_CGAL
 kernel::QMotion<kernel::Rational> to_motion_exact(const MotionFile& f) {
   return build_motion<kernel::Rational>(f, [](const Number& n) { return exact_from_text(n.text); });
@@ -260,6 +406,11 @@ json motion_to_json(const kernel::QMotion<kernel::Rational>& m, const json& meth
                     const std::string& units) {
   return motion_json(m, method, units,
                      [](const kernel::Rational& v) { return json(exact_to_text(v)); });
+}
+
+json motion_document(const kernel::Motion<kernel::Rational>& m, const json& input_poses) {
+  const auto num = [](const kernel::Rational& v) { return json(exact_to_text(v)); };
+  return motion_json(m.curve, method_json(m, input_poses, num), m.units, num);
 }
 #endif
 

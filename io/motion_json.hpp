@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <qmotion/io/json_number.hpp>
 #include <qmotion/kernel/motion.hpp>
+#include <qmotion/kernel/motion_value.hpp>
 #include <qmotion/sweep/factors.hpp>
 #include <string>
 #include <vector>
@@ -46,7 +47,29 @@ std::optional<sweep::MotionFactors<double>> factors_double(const MotionFile& f,
 nlohmann::json motion_to_json(const kernel::QMotion<double>& m, const nlohmann::json& method,
                               const std::string& units = "mm");
 
+/// The file as a motion value (double): its curve; the recorded factors when they
+/// reproduce it; the provenance when the method block records one completely (form,
+/// rotation, translation, degrees, parameters, input_poses), with the residuals at the
+/// poses recomputed; its units; `name` = the file name. Hand-written files (no method)
+/// give a motion without factors and provenance. A method block that records a field
+/// malformed is refused (Errc::invalid_input naming the field, and how to regenerate).
+kernel::Motion<double> to_motion(const MotionFile& f);
+/// read_motion then to_motion.
+kernel::Motion<double> load_motion(const std::string& path);
+
+/// The motion file document of a motion value (SPEC §5): the curve, and a method block
+/// from its provenance and factors (none when it has neither). `input_poses`, when not
+/// null, is written as the method's input_poses instead of the provenance's poses (the
+/// poses as the user gave them: rotation matrices, axis-angle, exact text).
+nlohmann::json motion_document(const kernel::Motion<double>& m,
+                               const nlohmann::json& input_poses = nullptr);
+/// Writes motion_document(m) to path atomically (two-space JSON).
+void save_motion(const kernel::Motion<double>& m, const std::string& path);
+
 #ifdef QMOTION_WITH_CGAL
+/// The exact motion's document: every number an exact "p/q" string.
+nlohmann::json motion_document(const kernel::Motion<kernel::Rational>& m,
+                               const nlohmann::json& input_poses = nullptr);
 /// The motion read exactly (every decimal and "p/q" as the rational it denotes).
 kernel::QMotion<kernel::Rational> to_motion_exact(const MotionFile& f);
 /// The recorded factors read exactly.

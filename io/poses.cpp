@@ -341,4 +341,16 @@ json poses_to_json(const PoseSet& set) {
   return json{{"units", set.units}, {"poses", poses}};
 }
 
+json poses_to_json(const std::vector<Pose<double>>& poses, const std::string& units) {
+  json out = json::array();
+  for (const auto& p : poses) {
+    json j;
+    if (p.t) j["t"] = *p.t;
+    j["position"] = {p.position(0), p.position(1), p.position(2)};
+    j["rotation"]["quaternion"] = {p.rotation.w(), p.rotation.x(), p.rotation.y(), p.rotation.z()};
+    out.push_back(j);
+  }
+  return json{{"units", units}, {"poses", out}};
+}
+
 }  // namespace qmotion::io

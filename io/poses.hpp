@@ -67,6 +67,9 @@ std::vector<Pose<kernel::Rational>> to_poses_exact(const PoseSet& set);
 /// The poses as JSON (SPEC §5), numbers written with their source text.
 nlohmann::json poses_to_json(const PoseSet& set);
 
+/// Poses in kernel numbers as pose JSON (SPEC §5): quaternion rotations, t when set.
+nlohmann::json poses_to_json(const std::vector<Pose<double>>& poses, const std::string& units);
+
 /// Length units accepted in files.
 bool is_known_unit(const std::string& unit);
 

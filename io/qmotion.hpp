@@ -19,7 +19,9 @@
 #include <qmotion/kernel/dual_quaternion.hpp>
 #include <qmotion/kernel/error.hpp>
 #include <qmotion/kernel/interpolation.hpp>
+#include <qmotion/kernel/methods.hpp>
 #include <qmotion/kernel/motion.hpp>
+#include <qmotion/kernel/motion_value.hpp>
 #include <qmotion/kernel/parametrization.hpp>
 #include <qmotion/kernel/quaternion.hpp>
 #include <qmotion/kernel/spline_interpolation.hpp>

@@ -7,7 +7,8 @@
 namespace qmotion::io {
 
 /// An isometric SVG of the trajectories and of the profile at nine instants.
-std::string render_demo_svg(const LoadedMotion& lm, const sweep::NurbsCurve<double>& profile) {
+std::string render_demo_svg(const kernel::Motion<double>& lm,
+                            const sweep::NurbsCurve<double>& profile) {
   auto proj = [](const Eigen::Vector3d& p) {
     return Eigen::Vector2d((p.x() - p.y()) * 0.8660254037844386, -(p.x() + p.y()) * 0.5 - p.z());
   };
@@ -19,12 +20,12 @@ std::string render_demo_svg(const LoadedMotion& lm, const sweep::NurbsCurve<doub
     colors.push_back(lines.size() == 1 ? "#c0392b" : "#2471a3");
     for (int i = 0; i <= 200; ++i)
       lines.back().push_back(proj(kernel::apply_point(
-          kernel::evaluate(lm.motion, lm.motion.a() + (lm.motion.b() - lm.motion.a()) * i / 200.0),
+          kernel::evaluate(lm.curve, lm.curve.a() + (lm.curve.b() - lm.curve.a()) * i / 200.0),
           x)));
   }
   for (int k = 0; k <= 8; ++k) {
     const auto q =
-        kernel::evaluate(lm.motion, lm.motion.a() + (lm.motion.b() - lm.motion.a()) * k / 8.0);
+        kernel::evaluate(lm.curve, lm.curve.a() + (lm.curve.b() - lm.curve.a()) * k / 8.0);
     lines.emplace_back();
     colors.push_back("#555555");
     for (int j = 0; j <= 40; ++j)

@@ -3,7 +3,9 @@
 #include <cmath>
 #include <optional>
 #include <qmotion/kernel/linear_solve.hpp>
+#include <qmotion/kernel/methods.hpp>
 #include <qmotion/kernel/motion.hpp>
+#include <qmotion/kernel/motion_value.hpp>
 #include <qmotion/kernel/pose.hpp>
 #include <sstream>
 #include <string>
@@ -11,31 +13,6 @@
 #include <vector>
 
 namespace qmotion::kernel {
-
-/// Rotation interpolation of section 3 (SPEC §2.2).
-enum class RotationMethod { elliptic, affine, projective };
-/// Translation of section 4-5 (SPEC §2.3).
-enum class TranslationMethod { tr, trt, minimal };
-
-inline const char* to_string(RotationMethod m) {
-  return m == RotationMethod::elliptic ? "elliptic"
-         : m == RotationMethod::affine ? "affine"
-                                       : "projective";
-}
-inline const char* to_string(TranslationMethod m) {
-  return m == TranslationMethod::tr ? "tr" : m == TranslationMethod::trt ? "trt" : "minimal";
-}
-/// The method of a name as to_string spells it (the one place names are parsed).
-inline std::optional<RotationMethod> rotation_method_from_string(const std::string& s) {
-  for (auto m : {RotationMethod::elliptic, RotationMethod::affine, RotationMethod::projective})
-    if (s == to_string(m)) return m;
-  return std::nullopt;
-}
-inline std::optional<TranslationMethod> translation_method_from_string(const std::string& s) {
-  for (auto m : {TranslationMethod::tr, TranslationMethod::trt, TranslationMethod::minimal})
-    if (s == to_string(m)) return m;
-  return std::nullopt;
-}
 
 struct InterpolationOptions {
   RotationMethod rotation = RotationMethod::elliptic;
@@ -45,25 +22,6 @@ struct InterpolationOptions {
   /// Largest accepted relative interpolation residual (double); above it the solve is
   /// refused as ill-conditioned.
   double max_residual = 1e-9;
-};
-
-/// Result of interpolate_bezier: the Q-motion and the pieces it was made of.
-template <typename Scalar>
-struct Interpolation {
-  Interpolation(QMotion<Scalar> m, Bernstein<Quaternion<Scalar>> r)
-      : motion(std::move(m)), rotation(std::move(r)) {}
-  QMotion<Scalar> motion;
-  Bernstein<Quaternion<Scalar>> rotation;  ///< Q_rot(t) (17)
-  int k = 0;                               ///< rotational degree
-  int l1 = 0, l2 = -1;                     ///< translational degree(s); l2 only for TRT
-  /// Translational factor(s): TR p_j of (30), minimal order w_j of (37), TRT p_j^(1)
-  /// then p_j^(2) of (32); one row per coefficient.
-  MatX<Scalar> translation, translation2;
-  std::vector<double> residuals;  ///< pose_residual at every pose
-  /// Poses where |Q_rot(t_i)| is below 1% of Q_rot's largest coefficient: near-inaccessible
-  /// (a somersault passes close by), so rounding is amplified there, up to the cube of the
-  /// ratio under the minimal-order method. Their residuals are still checked.
-  std::vector<int> near_inaccessible;
 };
 
 /// Order (degree of a general point's trajectory) that the construction guarantees for
@@ -186,6 +144,24 @@ std::vector<double> checked_residuals(const QMotion<Scalar>& m,
   return r;
 }
 
+/// The factors of a Bezier interpolation (one Bezier piece each on [a, b]): Q_rot and the
+/// translational coefficient rows (TRT: both).
+template <typename Scalar>
+MotionFactors<Scalar> bezier_factors(TranslationMethod method,
+                                     const Bernstein<Quaternion<Scalar>>& rot,
+                                     const MatX<Scalar>& P1, const MatX<Scalar>& P2) {
+  using V3 = Eigen::Matrix<Scalar, 3, 1>;
+  auto rows = [&](const MatX<Scalar>& P) {
+    std::vector<V3> c;
+    for (Eigen::Index j = 0; j < P.rows(); ++j) c.emplace_back(P(j, 0), P(j, 1), P(j, 2));
+    return BSpline<V3>::from_bezier(Bernstein<V3>(std::move(c), rot.a(), rot.b()));
+  };
+  MotionFactors<Scalar> f{method, BSpline<Quaternion<Scalar>>::from_bezier(rot), rows(P1),
+                          std::nullopt};
+  if (method == TranslationMethod::trt) f.translation2 = rows(P2);
+  return f;
+}
+
 inline std::string format_double(double x) {
   std::ostringstream os;
   os.precision(3);
@@ -278,15 +254,30 @@ Bernstein<Quaternion<Scalar>> interpolate_rotation(const std::vector<Pose<Scalar
   return rot;
 }
 
+/// Parameters (by index) where |Q_rot(t_i)| is below 1% of Q_rot's largest coefficient:
+/// near-inaccessible poses (a somersault passes close by), where rounding is amplified, up
+/// to the cube of the ratio under the minimal-order method.
+template <typename Scalar>
+std::vector<int> near_inaccessible(const BSpline<Quaternion<Scalar>>& rot,
+                                   const std::vector<Scalar>& t) {
+  double scale = 0;
+  for (const auto& c : rot.ctrl()) scale = std::max(scale, std::sqrt(to_double(c.norm2())));
+  std::vector<int> out;
+  for (std::size_t i = 0; i < t.size(); ++i)
+    if (std::sqrt(to_double(evaluate(rot, t[i]).norm2())) < 0.01 * scale)
+      out.push_back(static_cast<int>(i));
+  return out;
+}
+
 /// Interpolating Bezier Q-motion through the poses at parameters t (strictly increasing),
 /// by Juettler's rotation methods combined with TR (30)-(31) (Algorithm 1), TRT (32)-(34)
 /// or the minimal-order translation (36)-(39). Checks every pose afterwards and refuses
 /// (Errc::numerical_failure) a result whose relative residual exceeds
 /// options.max_residual: one Bezier through many poses is ill-conditioned.
 template <typename Scalar>
-Interpolation<Scalar> interpolate_bezier(const std::vector<Pose<Scalar>>& poses,
-                                         const std::vector<Scalar>& t,
-                                         const InterpolationOptions& options) {
+Motion<Scalar> interpolate_bezier(const std::vector<Pose<Scalar>>& poses,
+                                  const std::vector<Scalar>& t,
+                                  const InterpolationOptions& options) {
   if (poses.size() < 2) throw Error(Errc::invalid_input, "needs at least two poses");
   if (t.size() != poses.size()) throw Error(Errc::internal, "one parameter per pose expected");
   for (std::size_t i = 1; i < t.size(); ++i)
@@ -306,22 +297,24 @@ Interpolation<Scalar> interpolate_bezier(const std::vector<Pose<Scalar>>& poses,
                       std::to_string(m) + ", reciprocal condition " + detail::format_double(rc) +
                       "); use --form bspline");
   }
-  Interpolation<Scalar> out(
-      QMotion<Scalar>{Basis::bezier, BSpline<DualQuaternion<Scalar>>::from_bezier(
-                                         Bernstein<DualQuaternion<Scalar>>())},
-      interpolate_rotation(poses, t, options.rotation));
-  const auto& rot = out.rotation;
-  out.k = rot.degree();
+  Provenance<Scalar> prov;
+  prov.rotation = options.rotation;
+  prov.translation = options.translation;
+  prov.parameters = t;
+  prov.poses = poses;
+  const Bernstein<Quaternion<Scalar>> rot = interpolate_rotation(poses, t, options.rotation);
+  prov.rotation_degree = rot.degree();
+  MatX<Scalar> translation, translation2;  // rows: coefficients of the translational factor(s)
   MatX<Scalar> S(m + 1, 3);
   for (int i = 0; i <= m; ++i) S.row(i) = poses[static_cast<std::size_t>(i)].position.transpose();
 
   Bernstein<DualQuaternion<Scalar>> q;
   switch (options.translation) {
     case TranslationMethod::tr: {
-      out.l1 = m;
+      prov.translation_degree = m;
       const MatX<Scalar> P =
           solve_square(bernstein_collocation(t, m, a, b), S, "the translation system (31)");
-      out.translation = P;
+      translation = P;
       std::vector<DualQuaternion<Scalar>> trans;
       for (int j = 0; j <= m; ++j)
         trans.push_back(DualQuaternion<Scalar>::translation(P.row(j).transpose()));
@@ -341,8 +334,8 @@ Interpolation<Scalar> interpolate_bezier(const std::vector<Pose<Scalar>>& poses,
                         "data set" +
                         (m == 1 ? " (so TRT cannot interpolate two poses; use --translation tr)"
                                 : "; choose another split"));
-      out.l1 = l1;
-      out.l2 = l2;
+      prov.translation_degree = l1;
+      prov.translation_degree2 = l2;
       // p1(t_i) + R(Q_rot(t_i)) p2(t_i) = s_i: (34) divided by |Q_rot(t_i)|^2.
       const MatX<Scalar> B1 = bernstein_collocation(t, l1, a, b),
                          B2 = bernstein_collocation(t, l2, a, b);
@@ -383,8 +376,8 @@ Interpolation<Scalar> interpolate_bezier(const std::vector<Pose<Scalar>>& poses,
       for (int j = 0; j <= l2; ++j)
         for (int c = 0; c < 3; ++c) P2(j, c) = p(n1 + 3 * j + c, 0);
       // (2 + eps p1) Q_rot (2 + eps p2) = 4 Q_rot + eps 2 (p1 Q_rot + Q_rot p2).
-      out.translation = P1;
-      out.translation2 = P2;
+      translation = P1;
+      translation2 = P2;
       const auto p1 = detail::vector_poly(P1, a, b), p2 = detail::vector_poly(P2, a, b);
       const auto real = map_coeffs(
           rot, [](const Quaternion<Scalar>& x) { return Quaternion<Scalar>(x * Scalar(4)); });
@@ -395,14 +388,14 @@ Interpolation<Scalar> interpolate_bezier(const std::vector<Pose<Scalar>>& poses,
       break;
     }
     case TranslationMethod::minimal: {
-      out.l1 = m;
+      prov.translation_degree = m;
       // w(t_i) = |Q_rot(t_i)|^2 s_i (39); Q = (2 |Q_rot|^2 + eps w) * Q_rot (36)-(38).
       MatX<Scalar> W = S;
       for (int i = 0; i <= m; ++i)
         W.row(i) *= evaluate(rot, t[static_cast<std::size_t>(i)]).norm2();
       const MatX<Scalar> P =
           solve_square(bernstein_collocation(t, m, a, b), W, "the translation system (39)");
-      out.translation = P;
+      translation = P;
       const auto w = detail::vector_poly(P, a, b);
       const auto n2 =
           product(rot, map_coeffs(rot, [](const Quaternion<Scalar>& x) { return x.conj(); }));
@@ -413,18 +406,14 @@ Interpolation<Scalar> interpolate_bezier(const std::vector<Pose<Scalar>>& poses,
       break;
     }
   }
-  out.motion = QMotion<Scalar>{Basis::bezier, BSpline<DualQuaternion<Scalar>>::from_bezier(q)};
-  double rot_scale = 0;
-  for (const auto& c : out.rotation.coeffs())
-    rot_scale = std::max(rot_scale, std::sqrt(to_double(c.norm2())));
-  for (int i = 0; i <= m; ++i)
-    if (std::sqrt(to_double(evaluate(out.rotation, t[static_cast<std::size_t>(i)]).norm2())) <
-        0.01 * rot_scale)
-      out.near_inaccessible.push_back(i);
+  Motion<Scalar> out(
+      QMotion<Scalar>{Basis::bezier, BSpline<DualQuaternion<Scalar>>::from_bezier(q)},
+      detail::bezier_factors(options.translation, rot, translation, translation2));
+  prov.near_inaccessible = near_inaccessible(out.factors->rotation, t);
   // Check every pose: exactly proportional for exact Scalar, within max_residual otherwise.
-  out.residuals = detail::checked_residuals(out.motion, poses, t);
+  prov.residuals = detail::checked_residuals(out.curve, poses, t);
   for (int i = 0; i <= m; ++i) {
-    const double res = out.residuals[static_cast<std::size_t>(i)];
+    const double res = prov.residuals[static_cast<std::size_t>(i)];
     if (!(res <= options.max_residual))
       throw Error(Errc::numerical_failure,
                   "interpolation residual " + detail::format_double(res) + " at pose " +
@@ -433,6 +422,7 @@ Interpolation<Scalar> interpolate_bezier(const std::vector<Pose<Scalar>>& poses,
                       ": one Bezier motion of degree " + std::to_string(q.degree()) + " through " +
                       std::to_string(m + 1) + " poses is ill-conditioned; use --form bspline");
   }
+  out.provenance = std::move(prov);
   return out;
 }
 

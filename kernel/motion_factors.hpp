@@ -2,7 +2,9 @@
 #pragma once
 #include <Eigen/Core>
 #include <optional>
-#include <qmotion/kernel/interpolation.hpp>
+#include <qmotion/kernel/methods.hpp>
+#include <qmotion/kernel/motion.hpp>
+#include <qmotion/kernel/pose.hpp>
 
 namespace qmotion::kernel {
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <qmotion/kernel/banded.hpp>
+#include <qmotion/kernel/interpolation.hpp>
 #include <qmotion/kernel/motion_factors.hpp>
 #include <string>
 #include <vector>
@@ -77,15 +78,6 @@ struct SplineOptions {
   double max_residual = 1e-9;
 };
 
-/// A spline motion and the factors it is the product of.
-template <typename Scalar>
-struct SplineInterpolation {
-  QMotion<Scalar> motion;
-  MotionFactors<Scalar> factors;
-  int k = 0, l = 0;
-  std::vector<double> residuals;
-};
-
 namespace detail {
 
 template <typename Scalar>
@@ -130,19 +122,26 @@ BSpline<DualQuaternion<Scalar>> compose(const MotionFactors<Scalar>& f) {
 }
 
 template <typename Scalar>
-SplineInterpolation<Scalar> finish(MotionFactors<Scalar> f, int k, int l,
-                                   const std::vector<Pose<Scalar>>& poses,
-                                   const std::vector<Scalar>& t, double max_residual,
-                                   const char* form) {
-  SplineInterpolation<Scalar> out{
-      QMotion<Scalar>{Basis::bspline, compose(f)}, std::move(f), k, l, {}};
-  out.residuals = checked_residuals(out.motion, poses, t);
-  for (std::size_t i = 0; i < out.residuals.size(); ++i)
-    if (!(out.residuals[i] <= max_residual))
-      throw Error(Errc::numerical_failure, std::string(form) + " motion: interpolation residual " +
-                                               detail::format_double(out.residuals[i]) +
-                                               " at pose " + std::to_string(i) + " exceeds " +
-                                               detail::format_double(max_residual));
+Motion<Scalar> finish(MotionFactors<Scalar> f, int k, int l, const std::vector<Pose<Scalar>>& poses,
+                      const std::vector<Scalar>& t, double max_residual, Form form) {
+  Provenance<Scalar> prov;
+  prov.form = form;
+  prov.translation = f.method;
+  prov.rotation_degree = k;
+  prov.translation_degree = l;
+  prov.parameters = t;
+  prov.poses = poses;
+  QMotion<Scalar> curve{Basis::bspline, compose(f)};
+  Motion<Scalar> out(std::move(curve), std::move(f));
+  prov.residuals = checked_residuals(out.curve, poses, t);
+  for (std::size_t i = 0; i < prov.residuals.size(); ++i)
+    if (!(prov.residuals[i] <= max_residual))
+      throw Error(Errc::numerical_failure,
+                  std::string(form == Form::c1 ? "C1 spline" : "B-spline") +
+                      " motion: interpolation residual " +
+                      detail::format_double(prov.residuals[i]) + " at pose " + std::to_string(i) +
+                      " exceeds " + detail::format_double(max_residual));
+  out.provenance = std::move(prov);
   return out;
 }
 
@@ -161,9 +160,8 @@ inline void check_parameters(std::size_t poses, std::size_t params) {
 /// trajectory are C^(min(k, l) - 1) (C^2 for the default cubic factors). With fewer poses
 /// than degree + 1 a factor's degree drops to (poses - 1).
 template <typename Scalar>
-SplineInterpolation<Scalar> interpolate_bspline(const std::vector<Pose<Scalar>>& poses,
-                                                const std::vector<Scalar>& t,
-                                                const SplineOptions& opt) {
+Motion<Scalar> interpolate_bspline(const std::vector<Pose<Scalar>>& poses,
+                                   const std::vector<Scalar>& t, const SplineOptions& opt) {
   detail::check_parameters(poses.size(), t.size());
   if (opt.translation == TranslationMethod::trt)
     throw Error(Errc::invalid_input,
@@ -193,7 +191,7 @@ SplineInterpolation<Scalar> interpolate_bspline(const std::vector<Pose<Scalar>>&
       l, kt, interpolating_poles(t, kt, l, S, "the translational B-spline system"));
   return detail::finish(
       MotionFactors<Scalar>{opt.translation, std::move(rot), std::move(trans), std::nullopt}, k, l,
-      poses, t, opt.max_residual, "B-spline");
+      poses, t, opt.max_residual, Form::bspline);
 }
 
 /// Velocity estimates at the parameters (documented for Algorithm 2): with
@@ -230,10 +228,9 @@ inline std::vector<Eigen::Vector3d> bessel_estimates(const std::vector<Eigen::Ve
 /// (2 |Q_rot|^2 + eps w) Q_rot: segments of degree 9 and order 6, C^1 (|Q_rot(t_i)|^2 = 1
 /// and its derivative vanishes there, so w keeps the translation's end data). Local: a
 /// pose influences the segments whose end estimates use it (at most four). Double only.
-inline SplineInterpolation<double> interpolate_c1(const std::vector<Pose<double>>& poses,
-                                                  const std::vector<double>& t,
-                                                  TranslationMethod method,
-                                                  double max_residual = 1e-9) {
+inline Motion<double> interpolate_c1(const std::vector<Pose<double>>& poses,
+                                     const std::vector<double>& t, TranslationMethod method,
+                                     double max_residual = 1e-9) {
   detail::check_parameters(poses.size(), t.size());
   if (method == TranslationMethod::trt)
     throw Error(Errc::invalid_input,
@@ -270,7 +267,7 @@ inline SplineInterpolation<double> interpolate_c1(const std::vector<Pose<double>
   auto trans = from_bezier_pieces(tp, 3, knots);
   return detail::finish(
       MotionFactors<double>{method, std::move(rot), std::move(trans), std::nullopt}, 3, 3, poses, t,
-      max_residual, "C1 spline");
+      max_residual, Form::c1);
 }
 
 }  // namespace qmotion::kernel

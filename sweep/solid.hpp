@@ -154,9 +154,8 @@ struct BacksweepResult {
   bool flip = false;        ///< the region moves against its normal
 };
 
-inline BacksweepResult find_backsweep(const kernel::QMotion<double>& m,
-                                      const std::optional<MotionFactors<double>>& f,
-                                      const Profile<double>& p, const PlanarRegion& region) {
+inline BacksweepResult find_backsweep(const Motion<double>& m, const Profile<double>& p,
+                                      const PlanarRegion& region) {
   using V4 = Eigen::Vector4d;
   using V3 = Eigen::Vector3d;
   std::vector<V4> X;
@@ -164,9 +163,9 @@ inline BacksweepResult find_backsweep(const kernel::QMotion<double>& m,
     for (std::size_t j = 0; j < e.points.size(); ++j)
       X.emplace_back(e.weights[j], e.weights[j] * e.points[j](0), e.weights[j] * e.points[j](1),
                      e.weights[j] * e.points[j](2));
-  const auto cols = trajectories(m, f, X);
+  const auto cols = trajectories(m, X);
   const auto nh =
-      trajectories(m, f, {V4(0, region.normal(0), region.normal(1), region.normal(2))}).front();
+      trajectories(m, {V4(0, region.normal(0), region.normal(1), region.normal(2))}).front();
   std::vector<double> x = cols.front().breakpoints();
   for (double v : nh.breakpoints()) x.push_back(v);
   std::sort(x.begin(), x.end());
@@ -229,7 +228,8 @@ inline BacksweepResult find_backsweep(const kernel::QMotion<double>& m,
 /// motion and c(t) the trajectory of its centroid (the rotational part of the velocity
 /// integrates to zero over the region about its centroid). Computed from the motion alone,
 /// independently of the exported faces.
-inline double swept_volume(const kernel::QMotion<double>& m, const PlanarRegion& region) {
+inline double swept_volume(const Motion<double>& motion, const PlanarRegion& region) {
+  const kernel::QMotion<double>& m = motion.curve;
   Eigen::Vector4d C;
   C << 1, region.centroid;
   const auto h = kernel::homogeneous_trajectory(m, C);

@@ -1,7 +1,9 @@
 // sweep/surface.hpp
 #pragma once
 #include <optional>
+#include <qmotion/sweep/factors.hpp>
 #include <qmotion/sweep/nurbs.hpp>
+#include <qmotion/sweep/profiles.hpp>
 #include <qmotion/sweep/trajectory.hpp>
 #include <qmotion/sweep/weights.hpp>
 #include <vector>
@@ -21,15 +23,15 @@ struct HomogeneousSurface {
 /// vector: from the factors when given, else from the motion with the elevation common to
 /// all of them stripped.
 template <typename Scalar>
-std::vector<kernel::BSpline<Vec4<Scalar>>> trajectories(
-    const kernel::QMotion<Scalar>& m, const std::optional<MotionFactors<Scalar>>& f,
-    const std::vector<Vec4<Scalar>>& X) {
+std::vector<kernel::BSpline<Vec4<Scalar>>> trajectories(const Motion<Scalar>& motion,
+                                                        const std::vector<Vec4<Scalar>>& X) {
   std::vector<kernel::BSpline<Vec4<Scalar>>> cols;
-  if (f) {  // one matrix spline, then a linear map per point
-    const auto M = matrix_from_factors(*f);
+  if (motion.factors) {  // one matrix spline, then a linear map per point
+    const auto M = matrix_from_factors(*motion.factors);
     for (const auto& x : X) cols.push_back(apply(M, x));
     return cols;
   }
+  const kernel::QMotion<Scalar>& m = motion.curve;
   for (const auto& x : X) cols.push_back(kernel::homogeneous_trajectory(m, x));
   if (m.segments() == 1) {
     int d = 0;
@@ -47,8 +49,7 @@ std::vector<kernel::BSpline<Vec4<Scalar>>> trajectories(
 /// poles X_j = (w_j, w_j x_j), since M(t) acts linearly. Exact, no fitting; u is t. Knots
 /// are inserted along u until every weight is positive (SPEC §4).
 template <typename Scalar>
-HomogeneousSurface<Scalar> kinematic_surface(const kernel::QMotion<Scalar>& m,
-                                             const std::optional<MotionFactors<Scalar>>& f,
+HomogeneousSurface<Scalar> kinematic_surface(const Motion<Scalar>& m,
                                              const NurbsCurve<Scalar>& profile) {
   std::vector<Vec4<Scalar>> X;
   for (std::size_t j = 0; j < profile.points.size(); ++j) {
@@ -56,7 +57,7 @@ HomogeneousSurface<Scalar> kinematic_surface(const kernel::QMotion<Scalar>& m,
     x << profile.weights[j], profile.points[j] * profile.weights[j];
     X.push_back(x);
   }
-  auto cols = trajectories(m, f, X);
+  auto cols = trajectories(m, X);
   // Every column's weight function is w_j times the motion's: one refinement serves all.
   const auto extra = knots_for_positive_weights(cols.front());
   HomogeneousSurface<Scalar> s;
@@ -74,12 +75,11 @@ HomogeneousSurface<Scalar> kinematic_surface(const kernel::QMotion<Scalar>& m,
 /// The trajectory of the Cartesian point x as a homogeneous spline with positive weights,
 /// at its minimal degree (factors) or with elevation stripped (motion only).
 template <typename Scalar>
-kernel::BSpline<Vec4<Scalar>> trajectory(const kernel::QMotion<Scalar>& m,
-                                         const std::optional<MotionFactors<Scalar>>& f,
+kernel::BSpline<Vec4<Scalar>> trajectory(const Motion<Scalar>& m,
                                          const Eigen::Matrix<Scalar, 3, 1>& x) {
   Vec4<Scalar> X;
   X << Scalar(1), x;
-  auto h = f ? trajectory_from_factors(*f, X) : trajectory_from_motion(m, X);
+  auto h = m.factors ? trajectory_from_factors(*m.factors, X) : trajectory_from_motion(m.curve, X);
   return insert_knots(h, knots_for_positive_weights(h));
 }
 
@@ -125,6 +125,22 @@ Eigen::Matrix<Scalar, 3, 1> evaluate(const NurbsSurface<Scalar>& s, const Scalar
   const Vec4<Scalar> h =
       kernel::evaluate(kernel::BSpline<Vec4<Scalar>>::make(s.degree_v, s.knots_v, col), v);
   return (h.template tail<3>() / h(0)).eval();
+}
+
+/// The trajectory of the point x under the motion as an exact NURBS curve (u = t), at its
+/// minimal degree with positive weights. Throws Errc::numerical_failure through a pole.
+template <typename Scalar>
+NurbsCurve<Scalar> trajectory_curve(const Motion<Scalar>& m, const Eigen::Matrix<Scalar, 3, 1>& x) {
+  return to_nurbs(trajectory(m, x));
+}
+
+/// The kinematic surfaces the profile's edges sweep (SPEC §2.7): one exact NURBS surface
+/// per edge, u = t, v the edge's parameter, positive weights.
+template <typename Scalar>
+std::vector<NurbsSurface<Scalar>> sweep(const Motion<Scalar>& m, const Profile<Scalar>& profile) {
+  std::vector<NurbsSurface<Scalar>> out;
+  for (const auto& e : profile.edges) out.push_back(to_nurbs(kinematic_surface(m, e)));
+  return out;
 }
 
 }  // namespace qmotion::sweep

@@ -21,10 +21,17 @@ int main(int argc, char** argv) {
     std::filesystem::create_directories(out);
     const qm::io::PoseSet poses = qm::io::parse_poses_json(kPoses, "the consumer's poses");
     const qm::io::InterpolatedMotion made = qm::io::interpolate(poses, {});
-    const qm::io::LoadedMotion motion =
-        qm::io::load_motion(qm::io::parse_motion(made.document, "motion"));
+    // The motion value survives its file: save, load, and the same curve comes back.
+    qm::io::save_motion(made.motion, (out / "motion.json").string());
+    const qm::kernel::Motion<double> motion = qm::io::load_motion((out / "motion.json").string());
+    const auto &saved = made.motion.curve.curve.ctrl(), &loaded = motion.curve.curve.ctrl();
+    bool ok = motion.factors && motion.provenance && motion.provenance->poses.size() == 3 &&
+              loaded.size() == saved.size();
+    for (std::size_t i = 0; ok && i < saved.size(); ++i)
+      for (int c = 0; c < 8; ++c) ok = ok && loaded[i][c] == saved[i][c];
+    std::cout << "motion.json: " << (ok ? "read back as saved" : "DIFFERS after reading back")
+              << "\n";
     const qm::sweep::Profile<double> circle = qm::io::read_profile("circle:3");
-    bool ok = true;
     for (const bool solid : {false, true}) {
       qm::io::ExportOptions opt;
       opt.output = (out / (solid ? "tube_solid.step" : "tube.step")).string();

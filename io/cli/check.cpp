@@ -27,10 +27,10 @@ Command add_check(CLI::App& app) {
   return {sub, [o] {
             if (o->profile.empty() == o->point.empty())
               throw Error(Errc::invalid_input, "check: give exactly one of --profile and --point");
-            const io::LoadedMotion lm = io::load_motion(o->motion);
+            const kernel::Motion<double> lm = io::load_motion(o->motion);
             std::optional<sweep::Profile<double>> profile;
             std::optional<Eigen::Vector3d> point;
-            if (!o->profile.empty()) profile = io::read_profile(o->profile, lm.file.units);
+            if (!o->profile.empty()) profile = io::read_profile(o->profile, lm.units);
             if (!o->point.empty()) point = io::parse_point(o->point, "--point");
             if (o->grid < 1 || o->grid > 1000)
               throw Error(Errc::invalid_input, "--grid: expected 1 to 1000");

@@ -51,7 +51,8 @@ int run_demo(const std::string& dir) {
   const json& motion_doc = interpolated.document;
   const std::string& summary = interpolated.summary;
   io::write_file_atomic((tmp / "motion.json").string(), motion_doc.dump(1) + "\n");
-  const io::LoadedMotion lm = io::load_motion(io::parse_motion(motion_doc, "motion.json"));
+  kernel::Motion<double> lm = interpolated.motion;
+  lm.name = "motion.json";  // what the files' headers cite
   // The paper's Figure 5 idea: a parabola of the moving space swept by the motion.
   const sweep::NurbsCurve<double> parabola{
       2, {0, 0, 0, 1, 1, 1}, {{-10, 0, 10}, {0, 0, -10}, {10, 0, 10}}, {1, 1, 1}};

@@ -34,8 +34,8 @@ Command add_sweep(CLI::App& app) {
                 "Closed planar profile: add planar caps at both ends and write one closed solid");
   return {
       sub, [o] {
-        const io::LoadedMotion lm = io::load_motion(o->motion);
-        const auto profile = io::read_profile(o->profile, lm.file.units);
+        const kernel::Motion<double> lm = io::load_motion(o->motion);
+        const auto profile = io::read_profile(o->profile, lm.units);
         const auto r = io::export_surface(lm, profile, o->profile, o->options);
         std::cerr << "qmotion: wrote " << r.path << " (degrees " << r.degree_u << " x "
                   << r.degree_v << ", C" << r.continuity_u << " x C" << r.continuity_v << ", "

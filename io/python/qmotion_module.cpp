@@ -39,15 +39,38 @@ py::array_t<double> points_array(const std::vector<Eigen::Vector3d>& pts) {
   return a;
 }
 
-/// A motion: its file (curve, factors, method, units) and the double motion built from it.
+/// A motion: the value (curve, factors, provenance, units), its file as parsed (for the
+/// exact reports of info) and its document (what save writes).
 struct PyMotion {
-  qm::io::LoadedMotion loaded;
+  qm::io::MotionFile file;
+  qm::kernel::Motion<double> motion;
   json document;
 };
 
 PyMotion make_motion(json document, const std::string& source) {
-  PyMotion m{qm::io::load_motion(qm::io::parse_motion(document, source)), std::move(document)};
-  return m;
+  qm::io::MotionFile file = qm::io::parse_motion(document, source);
+  qm::kernel::Motion<double> motion = qm::io::to_motion(file);
+  return PyMotion{std::move(file), std::move(motion), std::move(document)};
+}
+
+/// The provenance as a dict (None for a hand-written motion).
+py::object provenance_dict(const qm::kernel::Motion<double>& m) {
+  if (!m.provenance) return py::none();
+  const auto& p = *m.provenance;
+  py::dict d;
+  d["form"] = qm::kernel::to_string(p.form);
+  d["rotation"] = qm::kernel::to_string(p.rotation);
+  d["translation"] = qm::kernel::to_string(p.translation);
+  d["rotation_degree"] = p.rotation_degree;
+  d["translation_degree"] = p.translation_degree;
+  if (p.translation_degree2 >= 0) d["translation_degree2"] = p.translation_degree2;
+  d["param"] = p.param;
+  d["parameters"] =
+      py::array_t<double>(static_cast<py::ssize_t>(p.parameters.size()), p.parameters.data());
+  d["residuals"] =
+      py::array_t<double>(static_cast<py::ssize_t>(p.residuals.size()), p.residuals.data());
+  d["poses"] = to_python(qm::io::poses_to_json(p.poses, m.units));
+  return std::move(d);
 }
 
 /// Poses from a file name, a pose-JSON dict, or rows [t, x, y, z, qw, qx, qy, qz] (or
@@ -232,18 +255,26 @@ PYBIND11_MODULE(qmotion, m) {
   py::class_<PyMotion>(m, "Motion",
                        "A rational motion: its dual-quaternion curve, the factors it is the "
                        "product of, how it was made, and its units")
-      .def_property_readonly("units", [](const PyMotion& p) { return p.loaded.file.units; })
-      .def_property_readonly("param_range",
-                             [](const PyMotion& p) {
-                               return std::make_pair(p.loaded.motion.a(), p.loaded.motion.b());
-                             })
-      .def_property_readonly("degree", [](const PyMotion& p) { return p.loaded.motion.degree(); })
+      .def_property_readonly("units", [](const PyMotion& p) { return p.motion.units; })
+      .def_property_readonly(
+          "param_range",
+          [](const PyMotion& p) { return std::make_pair(p.motion.curve.a(), p.motion.curve.b()); })
+      .def_property_readonly("degree", [](const PyMotion& p) { return p.motion.curve.degree(); })
+      .def_property_readonly("segments", [](const PyMotion& p) { return p.motion.segments(); })
+      .def_property_readonly(
+          "has_factors", [](const PyMotion& p) { return p.motion.factors.has_value(); },
+          "True when the factors the motion is the product of are known (trajectories at their "
+          "minimal degree)")
+      .def_property_readonly(
+          "provenance", [](const PyMotion& p) { return provenance_dict(p.motion); },
+          "How the motion was made, as a dict (form, rotation, translation, degrees, param, "
+          "parameters, residuals at the poses, poses), or None for a hand-written motion")
       .def(
           "eval",
           [](const PyMotion& p, double t, const py::object& point) {
             const Eigen::Vector3d x =
                 point.is_none() ? Eigen::Vector3d::Zero() : vec3(point, "point");
-            return to_python(qm::io::motion_eval(p.loaded.file, t, x));
+            return to_python(qm::io::motion_eval(p.file, t, x));
           },
           py::arg("t"), py::arg("point") = py::none(),
           "Where the motion is at t: dict with position (image of the moving origin), "
@@ -252,7 +283,7 @@ PYBIND11_MODULE(qmotion, m) {
       .def(
           "info",
           [](const PyMotion& p, bool exact) {
-            return to_python(qm::io::motion_info(p.loaded.file, exact));
+            return to_python(qm::io::motion_info(p.file, exact));
           },
           py::arg("exact") = false,
           "The `qmotion info` report as a dict: type, basis, degree, order, segments, "
@@ -271,12 +302,13 @@ PYBIND11_MODULE(qmotion, m) {
   m.def(
       "load",
       [](const std::string& path) {
-        PyMotion p{qm::io::load_motion(path), {}};
+        qm::io::MotionFile file = qm::io::read_motion(path);
+        qm::kernel::Motion<double> motion = qm::io::to_motion(file);
         std::ifstream in(path, std::ios::binary);
         std::stringstream text;
         text << in.rdbuf();
-        p.document = json::parse(text.str());  // as written (numbers as numbers)
-        return p;
+        json document = json::parse(text.str());  // as written (numbers as numbers)
+        return PyMotion{std::move(file), std::move(motion), std::move(document)};
       },
       py::arg("path"), "Reads a motion file written by `qmotion interpolate` or `save`.");
 
@@ -318,7 +350,7 @@ PYBIND11_MODULE(qmotion, m) {
       "trajectory",
       [](const PyMotion& p, const py::object& point, int max_degree, double tol,
          const std::string& units) {
-        return qm::io::trajectory_nurbs(p.loaded, vec3(point, "point"),
+        return qm::io::trajectory_nurbs(p.motion, vec3(point, "point"),
                                         export_options("", max_degree, tol, units, false, false));
       },
       py::arg("motion"), py::arg("point"), py::arg("max_degree") = -1, py::arg("tol") = -1.0,
@@ -331,7 +363,7 @@ PYBIND11_MODULE(qmotion, m) {
       "sweep",
       [](const PyMotion& p, const py::object& profile, int max_degree, double tol,
          const std::string& units) {
-        return qm::io::sweep_nurbs(p.loaded, to_profile(profile, p.loaded.file.units),
+        return qm::io::sweep_nurbs(p.motion, to_profile(profile, p.motion.units),
                                    export_options("", max_degree, tol, units, false, false));
       },
       py::arg("motion"), py::arg("profile"), py::arg("max_degree") = -1, py::arg("tol") = -1.0,
@@ -351,11 +383,11 @@ PYBIND11_MODULE(qmotion, m) {
         const auto opt = export_options(path, max_degree, tol, units, single_face, solid);
         if (!point.is_none())
           return to_python(
-              result_json(qm::io::export_trajectory(p.loaded, vec3(point, "point"), opt)));
+              result_json(qm::io::export_trajectory(p.motion, vec3(point, "point"), opt)));
         const std::string name =
             py::isinstance<py::str>(profile) ? profile.cast<std::string>() : "a profile";
         return to_python(result_json(
-            qm::io::export_surface(p.loaded, to_profile(profile, p.loaded.file.units), name, opt)));
+            qm::io::export_surface(p.motion, to_profile(profile, p.motion.units), name, opt)));
       },
       py::arg("motion"), py::arg("path"), py::arg("profile") = py::none(),
       py::arg("point") = py::none(), py::arg("max_degree") = -1, py::arg("tol") = -1.0,
@@ -373,9 +405,9 @@ PYBIND11_MODULE(qmotion, m) {
           throw qm::Error(qm::Errc::invalid_input, "check: give exactly one of profile and point");
         std::optional<qm::sweep::Profile<double>> prof;
         std::optional<Eigen::Vector3d> pt;
-        if (!profile.is_none()) prof = to_profile(profile, p.loaded.file.units);
+        if (!profile.is_none()) prof = to_profile(profile, p.motion.units);
         if (!point.is_none()) pt = vec3(point, "point");
-        return to_python(qm::io::check_geometry(path, p.loaded, prof, pt, grid));
+        return to_python(qm::io::check_geometry(path, p.motion, prof, pt, grid));
       },
       py::arg("path"), py::arg("motion"), py::arg("profile") = py::none(),
       py::arg("point") = py::none(), py::arg("grid") = 41,

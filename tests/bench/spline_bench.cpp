@@ -55,10 +55,8 @@ void BM_SurfaceOf1000PoseMotion(benchmark::State& st) {  // circle profile: 9 po
   std::vector<double> t;
   const auto P = poses(1000, t);
   const auto r = kernel::interpolate_bspline(P, t, kernel::SplineOptions{});
-  const std::optional<kernel::MotionFactors<double>> f = r.factors;
   const auto prof = sweep::circle(5.0);
-  for (auto _ : st)
-    benchmark::DoNotOptimize(sweep::to_nurbs(sweep::kinematic_surface(r.motion, f, prof)));
+  for (auto _ : st) benchmark::DoNotOptimize(sweep::to_nurbs(sweep::kinematic_surface(r, prof)));
 }
 BENCHMARK(BM_SurfaceOf1000PoseMotion)->Unit(benchmark::kMillisecond);
 

@@ -9,6 +9,7 @@
 #include <qmotion/io/motion_json.hpp>
 #include <qmotion/io/occt.hpp>
 #include <qmotion/io/poses.hpp>
+#include <qmotion/kernel/interpolation.hpp>
 #include <qmotion/kernel/parametrization.hpp>
 #include <qmotion/sweep/surface.hpp>
 
@@ -36,24 +37,15 @@ std::string motion_file(const std::string& poses, int count, kernel::Translation
   kernel::InterpolationOptions o;
   o.translation = tr;
   const auto r = kernel::interpolate_bezier(P, kernel::parametrize(P, kernel::ParamRule::given), o);
-  nlohmann::json method{{"translation", kernel::to_string(tr)}};
-  nlohmann::json rot = nlohmann::json::array(), trans = nlohmann::json::array();
-  for (const auto& c : r.rotation.coeffs()) rot.push_back({c.w(), c.x(), c.y(), c.z()});
-  for (Eigen::Index j = 0; j < r.translation.rows(); ++j)
-    trans.push_back({r.translation(j, 0), r.translation(j, 1), r.translation(j, 2)});
-  method["rotation_control_points"] = rot;
-  method["translation_control_points"] = trans;
   const std::string path = (fs::temp_directory_path() / name).string();
-  std::ofstream(path) << io::motion_to_json(r.motion, method).dump();
+  io::save_motion(r, path);
   return path;
 }
 
 std::string test_data(const std::string& rel) { return std::string(QMOTION_TEST_DATA) + "/" + rel; }
 
 sweep::NurbsSurface<double> surface_from_file(const std::string& path) {
-  const auto f = io::read_motion(path);
-  const auto m = io::to_motion_double(f);
-  return sweep::to_nurbs(sweep::kinematic_surface(m, io::factors_double(f, m), kParabola));
+  return sweep::to_nurbs(sweep::kinematic_surface(io::load_motion(path), kParabola));
 }
 
 void BM_DemoMotionFileToStep(benchmark::State& st) {  // five poses, elliptic + TR: 12 x 2
@@ -76,11 +68,9 @@ BENCHMARK(BM_Degree16x2MotionFileToStep)->Unit(benchmark::kMillisecond);
 void BM_Degree16x2SurfaceBuildOnly(benchmark::State& st) {
   const std::string path = motion_file(test_data("poses/helix_40.json"), 9,
                                        kernel::TranslationMethod::minimal, "bench_16b.json");
-  const auto f = io::read_motion(path);
-  const auto m = io::to_motion_double(f);
-  const auto factors = io::factors_double(f, m);
+  const auto m = io::load_motion(path);
   for (auto _ : st)
-    benchmark::DoNotOptimize(sweep::to_nurbs(sweep::kinematic_surface(m, factors, kParabola)));
+    benchmark::DoNotOptimize(sweep::to_nurbs(sweep::kinematic_surface(m, kParabola)));
 }
 BENCHMARK(BM_Degree16x2SurfaceBuildOnly)->Unit(benchmark::kMicrosecond);
 

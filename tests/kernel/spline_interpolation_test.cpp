@@ -44,10 +44,9 @@ double dense_plucker(const kernel::QMotion<double>& m) {
   return worst;
 }
 
-kernel::SplineInterpolation<double> make(const std::string& form,
-                                         const std::vector<Pose<double>>& P,
-                                         const std::vector<double>& t, TranslationMethod tr,
-                                         int k = 3, int l = 3) {
+kernel::Motion<double> make(const std::string& form, const std::vector<Pose<double>>& P,
+                            const std::vector<double>& t, TranslationMethod tr, int k = 3,
+                            int l = 3) {
   if (form == "c1") return kernel::interpolate_c1(P, t, tr);
   kernel::SplineOptions o;
   o.translation = tr;
@@ -64,17 +63,17 @@ TEST(SplineMotion, RandomPosesAreInterpolatedAndPlucker) {
         std::vector<double> t;
         const auto P = random_poses(static_cast<unsigned>(n), n, t);
         const auto r = make(form, P, t, tr);
-        ASSERT_EQ(r.residuals.size(), P.size());
+        ASSERT_EQ(r.provenance->residuals.size(), P.size());
         for (std::size_t i = 0; i < P.size(); ++i)  // independent of the function's own check
-          ASSERT_LE(kernel::pose_residual(kernel::evaluate(r.motion, t[i]), P[i].dual_quaternion()),
+          ASSERT_LE(kernel::pose_residual(kernel::evaluate(r.curve, t[i]), P[i].dual_quaternion()),
                     1e-10)
               << "pose " << i;
-        EXPECT_LE(dense_plucker(r.motion), 1e-12);
-        EXPECT_EQ(r.motion.segments(),
+        EXPECT_LE(dense_plucker(r.curve), 1e-12);
+        EXPECT_EQ(r.curve.segments(),
                   form == "c1" ? n - 1 : n - 3);  // averaged knots: n - p spans
-        EXPECT_EQ(r.motion.degree(), tr == TranslationMethod::tr ? 6 : 9);  // k + l, k + max(2k, l)
-        EXPECT_EQ(r.motion.a(), t.front());
-        EXPECT_EQ(r.motion.b(), t.back());
+        EXPECT_EQ(r.curve.degree(), tr == TranslationMethod::tr ? 6 : 9);  // k + l, k + max(2k, l)
+        EXPECT_EQ(r.curve.a(), t.front());
+        EXPECT_EQ(r.curve.b(), t.back());
       }
 }
 
@@ -124,10 +123,9 @@ TEST(SplineMotion, ContinuityAsStated) {
     const auto r = make(c.form, P, t, c.tr, c.k, c.l);
     for (const auto& x : points) {
       for (int d = 0; d <= c.cont; ++d)
-        EXPECT_LE(derivative_jump(r.motion, x, d), 1e-9)
-            << "order " << d << " at " << x.transpose();
+        EXPECT_LE(derivative_jump(r.curve, x, d), 1e-9) << "order " << d << " at " << x.transpose();
       // The next order does jump: the measurement can see a discontinuity.
-      EXPECT_GT(derivative_jump(r.motion, x, c.cont + 1), 1e-6) << "order " << c.cont + 1;
+      EXPECT_GT(derivative_jump(r.curve, x, c.cont + 1), 1e-6) << "order " << c.cont + 1;
     }
   }
 }
@@ -141,9 +139,9 @@ TEST(SplineMotion, AlgorithmTwoIsLocal) {
   const auto b = kernel::interpolate_c1(P, t, TranslationMethod::tr);
   // Estimates at poses 9, 10, 11 use pose 10; segment j uses the estimates at j and j + 1.
   for (int j = 0; j < 20; ++j) {
-    const auto pa = kernel::bezier_piece(a.motion.curve, t[static_cast<std::size_t>(j)],
+    const auto pa = kernel::bezier_piece(a.curve.curve, t[static_cast<std::size_t>(j)],
                                          t[static_cast<std::size_t>(j + 1)]);
-    const auto pb = kernel::bezier_piece(b.motion.curve, t[static_cast<std::size_t>(j)],
+    const auto pb = kernel::bezier_piece(b.curve.curve, t[static_cast<std::size_t>(j)],
                                          t[static_cast<std::size_t>(j + 1)]);
     // Q and -Q are one motion: the sign rule (24) may flip every later rotation.
     double plus = 0, minus = 0, size = 0;
@@ -166,8 +164,8 @@ TEST(SplineMotion, AlgorithmTwoIsLocal) {
   const auto c = kernel::interpolate_bspline(Q, t2, kernel::SplineOptions{});
   Q[10].position += V3(5, -3, 2);
   const auto d = kernel::interpolate_bspline(Q, t2, kernel::SplineOptions{});
-  EXPECT_NE(kernel::evaluate(c.motion, 0.5 * (t2[0] + t2[1])),
-            kernel::evaluate(d.motion, 0.5 * (t2[0] + t2[1])));
+  EXPECT_NE(kernel::evaluate(c.curve, 0.5 * (t2[0] + t2[1])),
+            kernel::evaluate(d.curve, 0.5 * (t2[0] + t2[1])));
 }
 
 TEST(SplineMotion, ExactBSplineMotionsAreExact) {
@@ -182,8 +180,8 @@ TEST(SplineMotion, ExactBSplineMotionsAreExact) {
       o.k = k;
       o.l = 2;
       const auto r = kernel::interpolate_bspline(P, t, o);  // throws unless every pose is exact
-      EXPECT_EQ(kernel::plucker_residual(r.motion), Rational(0));
-      for (double x : r.residuals) EXPECT_EQ(x, 0.0);
+      EXPECT_EQ(kernel::plucker_residual(r.curve), Rational(0));
+      for (double x : r.provenance->residuals) EXPECT_EQ(x, 0.0);
     }
 }
 
@@ -194,16 +192,15 @@ TEST(SplineMotion, ExportedGeometryIsExact) {
     for (auto tr : {TranslationMethod::tr, TranslationMethod::minimal}) {
       SCOPED_TRACE(form + " " + kernel::to_string(tr));
       const auto r = make(form, P, t, tr);
-      const std::optional<kernel::MotionFactors<double>> f = r.factors;
       const V3 x(3, -2, 5);
-      const auto c = sweep::to_nurbs(sweep::trajectory(r.motion, f, x));
+      const auto c = sweep::to_nurbs(sweep::trajectory(r, x));
       EXPECT_EQ(c.degree, kernel::construction_order(tr, 3, 3));
       std::mt19937 g(2);
-      std::uniform_real_distribution<double> u(r.motion.a(), r.motion.b()), v(0, 1);
+      std::uniform_real_distribution<double> u(r.curve.a(), r.curve.b()), v(0, 1);
       double dev = 0, lo = 1e300, hi = -1e300;
       for (int i = 0; i < 400; ++i) {
         const double s = u(g);
-        const V3 e = kernel::apply_point(kernel::evaluate(r.motion, s), x);
+        const V3 e = kernel::apply_point(kernel::evaluate(r.curve, s), x);
         dev = std::max(dev, (sweep::evaluate(c, s) - e).norm());
         lo = std::min(lo, e.minCoeff());
         hi = std::max(hi, e.maxCoeff());
@@ -211,13 +208,13 @@ TEST(SplineMotion, ExportedGeometryIsExact) {
       EXPECT_LE(dev / (hi - lo), 1e-11);
       for (double w : c.weights) EXPECT_GT(w, 0.0);
       const auto prof = sweep::circle(7.0);
-      const auto s = sweep::to_nurbs(sweep::kinematic_surface(r.motion, f, prof));
+      const auto s = sweep::to_nurbs(sweep::kinematic_surface(r, prof));
       double sdev = 0;
       for (int i = 0; i < 400; ++i) {
         const double uu = u(g), vv = v(g);
         sdev = std::max(
             sdev, (sweep::evaluate(s, uu, vv) -
-                   kernel::apply_point(kernel::evaluate(r.motion, uu), sweep::evaluate(prof, vv)))
+                   kernel::apply_point(kernel::evaluate(r.curve, uu), sweep::evaluate(prof, vv)))
                       .norm());
       }
       EXPECT_LE(sdev / (hi - lo), 1e-11);

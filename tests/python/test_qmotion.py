@@ -4,6 +4,7 @@ module on PYTHONPATH; QMOTION_EXE and QMOTION_TEST_DATA name the CLI and tests/d
 import json
 import os
 import subprocess
+from fractions import Fraction
 
 import numpy as np
 import pytest
@@ -57,6 +58,29 @@ def test_interpolate_gives_the_clis_motion_bit_for_bit(tmp_path, poses, kwargs, 
     info = m.info()
     assert max(info["interpolation_residual"]) <= 1e-9
     assert info["plucker_residual"] <= 1e-12
+    # The motion value knows how it was made: what the CLI's file records, read back.
+    method = json.loads(cli_file.read_text())["method"]
+    for mo in (m, back):
+        p = mo.provenance
+        assert mo.has_factors and p is not None
+        for key in ("form", "rotation", "translation", "param", "rotation_degree"):
+            assert p[key] == method[key], key
+        assert np.allclose(p["parameters"], [float(Fraction(str(x))) for x in method["parameters"]],
+                           rtol=0, atol=1e-15)
+        assert len(p["poses"]["poses"]) == len(p["parameters"]) == len(p["residuals"])
+        assert max(p["residuals"]) <= 1e-9
+
+
+def test_hand_written_motion_has_no_provenance(tmp_path):
+    f = tmp_path / "slide.json"
+    f.write_text(json.dumps({"type": "q-motion", "basis": "bezier", "degree": 1,
+                             "param_range": [0, 1], "units": "mm",
+                             "control_points": [[1, 0, 0, 0, 0, 0, 0, 0],
+                                                [1, 0, 0, 0, 0, 10, 0, 0]]}))
+    m = qmotion.load(str(f))
+    assert m.provenance is None and not m.has_factors
+    c = qmotion.trajectory(m, [0, 0, 0])
+    assert np.allclose(c(0.5), [10, 0, 0], atol=1e-12)  # (1 + eps d) translates by 2 d
 
 
 def test_poses_from_numpy_rows_interpolate_each_pose():

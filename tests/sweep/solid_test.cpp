@@ -1,6 +1,7 @@
 // tests/sweep/solid_test.cpp mirrors sweep/shell.hpp and sweep/solid.hpp
 #include <cmath>
 #include <qmotion/io/poses.hpp>
+#include <qmotion/kernel/interpolation.hpp>
 #include <qmotion/kernel/parametrization.hpp>
 #include <qmotion/sweep/factors.hpp>
 #include <qmotion/sweep/profiles.hpp>
@@ -16,7 +17,7 @@ namespace {
 using V3 = Eigen::Vector3d;
 
 struct Built {
-  kernel::Interpolation<double> r;
+  kernel::Motion<double> r;
   sweep::MotionFactors<double> f;
 };
 
@@ -27,7 +28,7 @@ Built motion(const std::vector<std::tuple<double, V3, V3, double>>& poses) {
     P.push_back(kernel::Pose<double>{t, p, kernel::from_axis_angle(axis, deg * M_PI / 180.0)});
   auto r = kernel::interpolate_bezier(P, kernel::parametrize(P, kernel::ParamRule::given),
                                       kernel::InterpolationOptions{});
-  auto f = sweep::factors_of(r, kernel::TranslationMethod::tr);
+  auto f = *r.factors;
   return Built{std::move(r), std::move(f)};
 }
 
@@ -35,9 +36,9 @@ TEST(Shell, SplittingAtC0KnotsKeepsTheSurfaceAndItsParameters) {
   const auto P = io::to_poses_double(io::read_poses(test_data("poses/five_positions.json")));
   auto r = kernel::interpolate_bezier(P, kernel::parametrize(P, kernel::ParamRule::given),
                                       kernel::InterpolationOptions{});
-  const auto f = sweep::factors_of(r, kernel::TranslationMethod::tr);
+  const auto f = *r.factors;
   const auto circle = sweep::circle(3.0);  // quadratic, C0 joints at 1/5, 1/2, 7/10
-  const auto whole = sweep::to_nurbs(sweep::kinematic_surface(r.motion, std::optional(f), circle));
+  const auto whole = sweep::to_nurbs(sweep::kinematic_surface(r, circle));
   const auto faces = sweep::split_c0(whole);
   ASSERT_EQ(faces.size(), 4u);
   EXPECT_EQ(sweep::min_continuity(whole.knots_v, 2), 0);
@@ -117,20 +118,18 @@ TEST(Solid, VolumeOfAScrewAlongTheNormalIsAreaTimesLength) {
       {{0.0, V3(0, 0, 0), z, 0.0}, {0.5, V3(0, 0, 6), z, 40.0}, {1.0, V3(0, 0, 12), z, 80.0}});
   for (const auto& prof : {sweep::rect(4.0, 2.0), sweep::single_edge(sweep::circle(3.0))}) {
     const auto region = sweep::planar_region(prof);
-    const auto back = sweep::find_backsweep(m.r.motion, std::optional(m.f), prof, region);
+    const auto back = sweep::find_backsweep(m.r, prof, region);
     EXPECT_FALSE(back.t.has_value());
     EXPECT_FALSE(back.flip);
-    EXPECT_NEAR(sweep::swept_volume(m.r.motion, region), region.area * 12.0,
-                1e-10 * region.area * 12.0);
+    EXPECT_NEAR(sweep::swept_volume(m.r, region), region.area * 12.0, 1e-10 * region.area * 12.0);
   }
   // Moving against the normal: the same volume, flagged as flipped, not as a back-sweep.
   const Built down = motion({{0.0, V3(0, 0, 0), z, 0.0}, {1.0, V3(0, 0, -5), z, 0.0}});
   const auto rect = sweep::rect(4.0, 2.0);
-  const auto back =
-      sweep::find_backsweep(down.r.motion, std::optional(down.f), rect, sweep::planar_region(rect));
+  const auto back = sweep::find_backsweep(down.r, rect, sweep::planar_region(rect));
   EXPECT_FALSE(back.t.has_value());
   EXPECT_TRUE(back.flip);
-  EXPECT_NEAR(sweep::swept_volume(down.r.motion, sweep::planar_region(rect)), 40.0, 1e-10);
+  EXPECT_NEAR(sweep::swept_volume(down.r, sweep::planar_region(rect)), 40.0, 1e-10);
 }
 
 TEST(Solid, ARegionTurningAboutALineInItsPlaneSweepsBack) {
@@ -140,20 +139,19 @@ TEST(Solid, ARegionTurningAboutALineInItsPlaneSweepsBack) {
   const Built m = motion(
       {{0.0, V3(0, 0, 0), x, 0.0}, {0.5, V3(0, 0, 0), x, 30.0}, {1.0, V3(0, 0, 0), x, 60.0}});
   const auto rect = sweep::rect(4.0, 2.0);
-  const auto back =
-      sweep::find_backsweep(m.r.motion, std::optional(m.f), rect, sweep::planar_region(rect));
+  const auto back = sweep::find_backsweep(m.r, rect, sweep::planar_region(rect));
   ASSERT_TRUE(back.t.has_value());
   EXPECT_DOUBLE_EQ(*back.t, 0.0);  // from the start
   // Moved off the axis (the region entirely on one side) it sweeps a solid of revolution.
   const auto off =
       sweep::polyline<double>({V3(-2, 3, 0), V3(2, 3, 0), V3(2, 5, 0), V3(-2, 5, 0), V3(-2, 3, 0)});
   const auto region = sweep::planar_region(off);
-  const auto ok = sweep::find_backsweep(m.r.motion, std::optional(m.f), off, region);
+  const auto ok = sweep::find_backsweep(m.r, off, region);
   EXPECT_FALSE(ok.t.has_value());
   // Pappus: V = A * (distance of the centroid from the axis) * angle, when the turn is
   // uniform; the elliptic interpolant is not uniform in angle but turns by 60 degrees in
   // all, and the volume only depends on the total angle (n.c' dt = r dtheta).
-  EXPECT_NEAR(sweep::swept_volume(m.r.motion, region), 8.0 * 4.0 * M_PI / 3.0, 1e-9);
+  EXPECT_NEAR(sweep::swept_volume(m.r, region), 8.0 * 4.0 * M_PI / 3.0, 1e-9);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <qmotion/io/nurbs_json.hpp>
 #include <qmotion/io/poses.hpp>
+#include <qmotion/kernel/interpolation.hpp>
 #include <qmotion/kernel/parametrization.hpp>
 #include <qmotion/sweep/approximate.hpp>
 #include <qmotion/sweep/profiles.hpp>
@@ -18,10 +19,11 @@ using kernel::RotationMethod;
 using kernel::TranslationMethod;
 using V3 = Eigen::Vector3d;
 
-const std::optional<sweep::MotionFactors<double>> kNoFactors;
+/// A motion without recorded factors (hand-written).
+kernel::Motion<double> bare(const kernel::QMotion<double>& m) { return kernel::Motion<double>(m); }
 
 struct Built {
-  kernel::Interpolation<double> r;
+  kernel::Motion<double> r;
   sweep::MotionFactors<double> f;
 };
 
@@ -30,7 +32,7 @@ Built build(const std::vector<kernel::Pose<double>>& P, RotationMethod rot, Tran
   o.rotation = rot;
   o.translation = tr;
   auto r = kernel::interpolate_bezier(P, kernel::parametrize(P, kernel::ParamRule::given), o);
-  auto f = sweep::factors_of(r, tr);
+  auto f = *r.factors;
   return Built{std::move(r), std::move(f)};
 }
 
@@ -90,15 +92,16 @@ TEST(Trajectory, ExactAtItsMinimalDegreeForEveryMethod) {
     for (auto tr : kTr) {
       SCOPED_TRACE(std::string(kernel::to_string(rot)) + "+" + kernel::to_string(tr));
       const Built b = build(P, rot, tr);
-      ASSERT_TRUE(sweep::factors_match(b.f, b.r.motion));
-      const int k = b.r.k;
+      ASSERT_TRUE(sweep::factors_match(b.f, b.r.curve));
+      const int k = b.r.provenance->rotation_degree;
       for (const V3& x : {V3(0, 0, 0), V3(0, 0, 1), V3(12, -3, 7)}) {
-        const auto c = sweep::to_nurbs(sweep::trajectory(b.r.motion, std::optional(b.f), x));
-        EXPECT_LE(curve_deviation(c, b.r.motion, x), 1e-11);
+        const auto c = sweep::to_nurbs(sweep::trajectory(b.r, x));
+        EXPECT_LE(curve_deviation(c, b.r.curve, x), 1e-11);
         EXPECT_TRUE(all_positive(c.weights));
-        EXPECT_EQ(c.knots.front(), b.r.motion.a());  // u is t
-        EXPECT_EQ(c.knots.back(), b.r.motion.b());
-        int expected = kernel::construction_order(tr, k, b.r.l1, std::max(b.r.l2, 0));
+        EXPECT_EQ(c.knots.front(), b.r.curve.a());  // u is t
+        EXPECT_EQ(c.knots.back(), b.r.curve.b());
+        int expected = kernel::construction_order(tr, k, b.r.provenance->translation_degree,
+                                                  std::max(b.r.provenance->translation_degree2, 0));
         if (tr == TranslationMethod::tr && x.isZero())
           expected = m;  // Proposition 4: the origin's path has degree l
         EXPECT_EQ(c.degree, expected) << x.transpose();
@@ -106,8 +109,8 @@ TEST(Trajectory, ExactAtItsMinimalDegreeForEveryMethod) {
       // Without the factors: the same geometry from the motion alone (degree 2n, elevation
       // stripped). Forming |Q0|^2 = 4 |Q_rot|^6 (minimal order) loses digits where the
       // projective rotation comes near zero, which is why exports use the factors.
-      const auto c2 = sweep::to_nurbs(sweep::trajectory(b.r.motion, kNoFactors, V3(0, 0, 1)));
-      EXPECT_LE(curve_deviation(c2, b.r.motion, V3(0, 0, 1)), 1e-10) << "degree " << c2.degree;
+      const auto c2 = sweep::to_nurbs(sweep::trajectory(bare(b.r.curve), V3(0, 0, 1)));
+      EXPECT_LE(curve_deviation(c2, b.r.curve, V3(0, 0, 1)), 1e-10) << "degree " << c2.degree;
     }
 }
 
@@ -120,14 +123,14 @@ TEST(Trajectory, ExactlyOnTheMotionInRationalArithmetic) {
     o.translation = tr;
     o.rotation = RotationMethod::affine;
     const auto r = kernel::interpolate_bezier(P, t, o);
-    const auto f = sweep::factors_of(r, tr);
-    ASSERT_TRUE(sweep::factors_match(f, r.motion));
+    const auto f = *r.factors;
+    ASSERT_TRUE(sweep::factors_match(f, r.curve));
     sweep::Vec4<Rational> X(Rational(2), Rational(3), Rational(-1), Rational(5) / Rational(7));
     const auto y = sweep::trajectory_from_factors(f, X);
     for (int i = 0; i <= 12; ++i) {
       const Rational s = Rational(i) / Rational(12);
       const auto a = kernel::evaluate(y, s);
-      const auto e = kernel::apply(kernel::evaluate(r.motion, s), X);
+      const auto e = kernel::apply(kernel::evaluate(r.curve, s), X);
       for (int c = 0; c < 4; ++c)
         for (int d = 0; d < 4; ++d)
           ASSERT_EQ(Rational(a(c) * e(d)), Rational(a(d) * e(c))) << "t = " << s;
@@ -155,14 +158,16 @@ TEST(KinematicSurface, ExactForEveryMethodAndProfileKind) {
       for (const auto& [name, prof] : profiles()) {
         SCOPED_TRACE(std::string(kernel::to_string(rot)) + "+" + kernel::to_string(tr) + " " +
                      name);
-        const auto s =
-            sweep::to_nurbs(sweep::kinematic_surface(b.r.motion, std::optional(b.f), prof));
-        EXPECT_LE(surface_deviation(s, b.r.motion, prof), 1e-11);
+        const auto s = sweep::to_nurbs(sweep::kinematic_surface(b.r, prof));
+        EXPECT_LE(surface_deviation(s, b.r.curve, prof), 1e-11);
         for (const auto& row : s.weights) EXPECT_TRUE(all_positive(row));
         EXPECT_EQ(s.degree_v, prof.degree);
-        EXPECT_EQ(s.degree_u, kernel::construction_order(tr, b.r.k, b.r.l1, std::max(b.r.l2, 0)));
-        EXPECT_EQ(s.knots_u.front(), b.r.motion.a());
-        EXPECT_EQ(s.knots_u.back(), b.r.motion.b());
+        EXPECT_EQ(s.degree_u,
+                  kernel::construction_order(tr, b.r.provenance->rotation_degree,
+                                             b.r.provenance->translation_degree,
+                                             std::max(b.r.provenance->translation_degree2, 0)));
+        EXPECT_EQ(s.knots_u.front(), b.r.curve.a());
+        EXPECT_EQ(s.knots_u.back(), b.r.curve.b());
       }
     }
 }
@@ -189,11 +194,11 @@ TEST(PositiveWeights, NegativeBernsteinWeightsAreRefinedAwayWithTheSameGeometry)
                 ->
                 operator()(0),
             0.0);
-  const auto c = sweep::to_nurbs(sweep::trajectory(m, kNoFactors, x));
+  const auto c = sweep::to_nurbs(sweep::trajectory(bare(m), x));
   EXPECT_TRUE(all_positive(c.weights));
   EXPECT_GT(c.knots.size(), raw.knots().size());  // knots were inserted
   EXPECT_LE(curve_deviation(c, m, x), 1e-11);     // same geometry, u = t
-  const auto s = sweep::to_nurbs(sweep::kinematic_surface(m, kNoFactors, sweep::circle(4.0)));
+  const auto s = sweep::to_nurbs(sweep::kinematic_surface(bare(m), sweep::circle(4.0)));
   for (const auto& row : s.weights) EXPECT_TRUE(all_positive(row));
   EXPECT_LE(surface_deviation(s, m, sweep::circle(4.0)), 1e-11);
 }
@@ -205,7 +210,7 @@ TEST(PositiveWeights, AMotionWithAPoleCannotBeMadePositive) {
                                   kernel::BSpline<DQ>::from_bezier(kernel::product(
                                       kernel::Bernstein<DQ>({DQ::translation(V3(1, 0, 0))}),
                                       kernel::Bernstein<Q>({Q(1, 0, 0, 0), Q(-1, 0, 0, 0)})))};
-  EXPECT_TRUE(throws_error([&] { sweep::trajectory(m, kNoFactors, V3(1, 1, 1)); },
+  EXPECT_TRUE(throws_error([&] { sweep::trajectory(bare(m), V3(1, 1, 1)); },
                            Errc::numerical_failure, {"pole"}));
 }
 
@@ -246,7 +251,7 @@ TEST(Approximation, LowerDegreeWithinTheMeasuredTolerance) {
   for (int i = 0; i <= 997; ++i) {
     const double t = i / 997.0;
     dev = std::max(dev, (sweep::evaluate(c, t) -
-                         kernel::apply_point(kernel::evaluate(b.r.motion, t), V3(0, 0, 1)))
+                         kernel::apply_point(kernel::evaluate(b.r.curve, t), V3(0, 0, 1)))
                             .norm());
   }
   EXPECT_LE(dev, 1e-4);
