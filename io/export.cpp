@@ -640,4 +640,24 @@ json check_geometry(const std::string& file, const kernel::Motion<double>& lm,
   return out;
 }
 
+namespace {
+void require_one(const Geometry& g, const char* what) {
+  if (g.point.has_value() == g.profile.has_value())
+    throw Error(Errc::invalid_input, std::string(what) + ": give exactly one of profile and point");
+}
+}  // namespace
+
+ExportResult export_geometry(const kernel::Motion<double>& motion, const Geometry& geometry,
+                             const ExportOptions& opt) {
+  require_one(geometry, "export");
+  if (geometry.point) return export_trajectory(motion, *geometry.point, opt);
+  return export_surface(motion, *geometry.profile, geometry.profile_name, opt);
+}
+
+json check(const std::string& file, const kernel::Motion<double>& motion, const Geometry& geometry,
+           int grid) {
+  require_one(geometry, "check");
+  return check_geometry(file, motion, geometry.profile, geometry.point, grid);
+}
+
 }  // namespace qmotion::io

@@ -69,6 +69,27 @@ nlohmann::json check_geometry(const std::string& file, const kernel::Motion<doub
                               const std::optional<sweep::Profile<double>>& profile,
                               const std::optional<Eigen::Vector3d>& point, int grid = 41);
 
+/// What a motion makes: the trajectory of a point of the moving space, or the kinematic
+/// surface of a profile (named in file headers and messages by profile_name).
+struct Geometry {
+  std::optional<Eigen::Vector3d> point;
+  std::optional<sweep::Profile<double>> profile;
+  std::string profile_name = "a profile";
+
+  static Geometry trajectory(const Eigen::Vector3d& p) { return Geometry{p, std::nullopt, {}}; }
+  static Geometry sweep(sweep::Profile<double> p, std::string name = "a profile") {
+    return Geometry{std::nullopt, std::move(p), std::move(name)};
+  }
+};
+
+/// export_trajectory or export_surface, as the geometry says; Errc::invalid_input unless
+/// exactly one of point and profile is set.
+ExportResult export_geometry(const kernel::Motion<double>& motion, const Geometry& geometry,
+                             const ExportOptions& opt);
+/// check_geometry for the geometry's point or profile.
+nlohmann::json check(const std::string& file, const kernel::Motion<double>& motion,
+                     const Geometry& geometry, int grid = 41);
+
 /// Parses "x,y,z" given to `flag`.
 Eigen::Vector3d parse_point(const std::string& text, const std::string& flag);
 

@@ -105,6 +105,18 @@ qm::sweep::Profile<double> to_profile(const py::handle& p, const std::string& un
   return qm::io::read_profile(p.cast<std::string>(), units);
 }
 
+/// The point or profile of an export or check call (both or neither: the library refuses).
+qm::io::Geometry to_geometry(const PyMotion& m, const py::object& profile,
+                             const py::object& point) {
+  qm::io::Geometry g;
+  if (!point.is_none()) g.point = vec3(point, "point");
+  if (!profile.is_none()) {
+    g.profile = to_profile(profile, m.motion.units);
+    if (py::isinstance<py::str>(profile)) g.profile_name = profile.cast<std::string>();
+  }
+  return g;
+}
+
 qm::io::ExportOptions export_options(const std::string& output, int max_degree, double tol,
                                      const std::string& units, bool single_face, bool solid) {
   qm::io::ExportOptions o;
@@ -378,16 +390,9 @@ PYBIND11_MODULE(qmotion, m) {
       [](const PyMotion& p, const std::string& path, const py::object& profile,
          const py::object& point, int max_degree, double tol, const std::string& units,
          bool single_face, bool solid) {
-        if (profile.is_none() == point.is_none())
-          throw qm::Error(qm::Errc::invalid_input, "export: give exactly one of profile and point");
         const auto opt = export_options(path, max_degree, tol, units, single_face, solid);
-        if (!point.is_none())
-          return to_python(
-              result_json(qm::io::export_trajectory(p.motion, vec3(point, "point"), opt)));
-        const std::string name =
-            py::isinstance<py::str>(profile) ? profile.cast<std::string>() : "a profile";
-        return to_python(result_json(
-            qm::io::export_surface(p.motion, to_profile(profile, p.motion.units), name, opt)));
+        return to_python(
+            result_json(qm::io::export_geometry(p.motion, to_geometry(p, profile, point), opt)));
       },
       py::arg("motion"), py::arg("path"), py::arg("profile") = py::none(),
       py::arg("point") = py::none(), py::arg("max_degree") = -1, py::arg("tol") = -1.0,
@@ -401,13 +406,7 @@ PYBIND11_MODULE(qmotion, m) {
       "check",
       [](const std::string& path, const PyMotion& p, const py::object& profile,
          const py::object& point, int grid) {
-        if (profile.is_none() == point.is_none())
-          throw qm::Error(qm::Errc::invalid_input, "check: give exactly one of profile and point");
-        std::optional<qm::sweep::Profile<double>> prof;
-        std::optional<Eigen::Vector3d> pt;
-        if (!profile.is_none()) prof = to_profile(profile, p.motion.units);
-        if (!point.is_none()) pt = vec3(point, "point");
-        return to_python(qm::io::check_geometry(path, p.motion, prof, pt, grid));
+        return to_python(qm::io::check(path, p.motion, to_geometry(p, profile, point), grid));
       },
       py::arg("path"), py::arg("motion"), py::arg("profile") = py::none(),
       py::arg("point") = py::none(), py::arg("grid") = 41,

@@ -179,6 +179,11 @@ def test_errors_have_the_clis_class_and_message(tmp_path):
         assert str(info.value) == message
     with pytest.raises(ValueError, match="outside"):
         m.eval(2.0)
+    for call in (lambda: qmotion.export(m, str(tmp_path / "x.step")),
+                 lambda: qmotion.export(m, str(tmp_path / "x.step"), profile="circle:3", point=[0, 0, 0]),
+                 lambda: qmotion.check(str(tmp_path / "x.step"), m)):
+        with pytest.raises(ValueError, match="exactly one of profile and point"):
+            call()
     assert not (tmp_path / "x.step").exists()
 
 
