@@ -23,6 +23,8 @@
 #include <IGESData_IGESModel.hxx>
 #include <IGESData_IGESWriter.hxx>
 #include <IGESSelect_WorkLibrary.hxx>
+#include <Interface_Check.hxx>
+#include <Interface_CheckIterator.hxx>
 #include <Interface_Static.hxx>
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
@@ -54,6 +56,8 @@
 #include <XSControl_WorkSession.hxx>
 #include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -525,6 +529,118 @@ void write_step(const std::string& path, const std::vector<sweep::NurbsCurve<dou
   guarded(path, [&] { write_step_shape(path, make_wire(wire, path, "curves"), info); });
 }
 
+namespace {
+/// Checks an IGES file's structure before OpenCASCADE parses it: OpenCASCADE 7.6 crashes
+/// on a rational B-spline entity (126/128) whose parameter record is cut short. Every
+/// directory entry must point at parameter lines that exist, and every 126/128 record must
+/// hold all the numbers its K and M announce (within bounds that keep the work finite).
+/// Files declaring other delimiters than ',' and ';' are checked with theirs.
+void check_iges_structure(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::vector<std::string> d, p;
+  std::string g, line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.find_first_not_of(" \t") == std::string::npos) continue;
+    const char section = line.size() >= 73 ? line[72] : ' ';
+    if (std::string("SGDPT").find(section) == std::string::npos || section == '\0')
+      throw Error(Errc::invalid_input,
+                  path + ": a damaged IGES file (line " + std::to_string(number) +
+                      ": not an 80-column record with its section letter in column 73)");
+    if (section == 'G') g += line.substr(0, 72);
+    if (section == 'D') d.push_back(line);
+    if (section == 'P') p.push_back(line);
+  }
+  char delim = ',', rec = ';';
+  if (g.size() >= 3 && g.compare(0, 2, "1H") == 0) delim = g[2];
+  {
+    const std::size_t at = g.size() >= 3 && g.compare(0, 2, "1H") == 0 ? 4 : 1;
+    if (g.size() >= at + 3 && g.compare(at, 2, "1H") == 0) rec = g[at + 2];
+  }
+  auto damaged = [&](std::size_t entry, const std::string& what) {
+    throw Error(Errc::invalid_input, path + ": a damaged IGES file (directory entry " +
+                                         std::to_string(2 * entry + 1) + ": " + what + ")");
+  };
+  auto field = [](const std::string& l, int k) {  // 8-column field k (0-based) of a D line
+    const std::string f = l.substr(static_cast<std::size_t>(8 * k), 8);
+    const auto b = f.find_first_not_of(' ');
+    if (b == std::string::npos) return 0L;
+    char* end = nullptr;
+    const long v = std::strtol(f.c_str() + b, &end, 10);
+    return (end && *end == '\0') ||
+                   (end && std::string(end).find_first_not_of(' ') == std::string::npos)
+               ? v
+               : -1L;
+  };
+  for (std::size_t e = 0; e + 1 < d.size(); e += 2) {
+    const long type = field(d[e], 0), start = field(d[e], 1), count = field(d[e + 1], 3);
+    if (type < 0 || start < 1 || count < 1 || start + count - 1 > static_cast<long>(p.size()))
+      damaged(e / 2, "its parameter lines are missing");
+    std::string data;
+    for (long k = start - 1; k < start - 1 + count; ++k)
+      data += p[static_cast<std::size_t>(k)].substr(0, 64);
+    const auto end = data.find(rec);
+    if (end == std::string::npos) damaged(e / 2, "its parameter record is cut short");
+    if (type != 126 && type != 128) continue;
+    std::vector<double> v;
+    std::size_t pos = 0;
+    const std::string rec_data = data.substr(0, end);
+    while (pos <= rec_data.size()) {
+      const auto next = std::min(rec_data.find(delim, pos), rec_data.size());
+      std::string f = rec_data.substr(pos, next - pos);
+      f.erase(0, f.find_first_not_of(' '));
+      f.erase(f.find_last_not_of(' ') + 1);
+      for (auto& c : f)
+        if (c == 'D' || c == 'd') c = 'E';  // Fortran double exponent
+      char* stop = nullptr;
+      const double x = std::strtod(f.c_str(), &stop);
+      v.push_back(!f.empty() && stop && *stop == '\0' && std::isfinite(x) ? x : std::nan(""));
+      pos = next + 1;
+    }
+    auto count_ok = [&](double need) { return static_cast<double>(v.size()) >= need; };
+    auto numbers_ok = [&](std::size_t need) {
+      for (std::size_t k = 1; k < need; ++k)
+        if (std::isnan(v[k])) return false;
+      return true;
+    };
+    if (type == 126) {
+      if (!count_ok(3)) damaged(e / 2, "a B-spline curve without its degree");
+      const double K = v[1], M = v[2];
+      if (!(M >= 1 && M <= 25 && K >= M && K <= 1e6 && K == std::floor(K) && M == std::floor(M)))
+        damaged(e / 2, "a B-spline curve with impossible K, M");
+      const double need = 7 + (K + M + 2) + 4 * (K + 1) + 5;
+      if (!count_ok(need) || !numbers_ok(static_cast<std::size_t>(need)))
+        damaged(e / 2, "a B-spline curve with missing or non-numeric data");
+    } else {
+      if (!count_ok(5)) damaged(e / 2, "a B-spline surface without its degrees");
+      const double K1 = v[1], K2 = v[2], M1 = v[3], M2 = v[4];
+      if (!(M1 >= 1 && M2 >= 1 && M1 <= 25 && M2 <= 25 && K1 >= M1 && K2 >= M2 &&
+            (K1 + 1) * (K2 + 1) <= 1e7 && K1 == std::floor(K1) && K2 == std::floor(K2) &&
+            M1 == std::floor(M1) && M2 == std::floor(M2)))
+        damaged(e / 2, "a B-spline surface with impossible K, M");
+      const double need = 10 + (K1 + M1 + 2) + (K2 + M2 + 2) + 4 * (K1 + 1) * (K2 + 1) + 4;
+      if (!count_ok(need) || !numbers_ok(static_cast<std::size_t>(need)))
+        damaged(e / 2, "a B-spline surface with missing or non-numeric data");
+    }
+  }
+}
+
+/// Refuses a file in which OpenCASCADE's reader found failed entities (a damaged or
+/// truncated file): transferring one can dereference a missing entity and crash.
+void refuse_failed_load(XSControl_Reader& reader, const std::string& path, const char* format) {
+  const Interface_CheckIterator checks = reader.WS()->ModelCheckList();
+  for (checks.Start(); checks.More(); checks.Next()) {
+    const Handle(Interface_Check)& c = checks.Value();
+    if (c.IsNull() || !c->HasFailed()) continue;
+    std::string what = c->NbFails() > 0 ? c->CFail(1) : "a failed entity";
+    const int n = checks.Number();
+    throw Error(Errc::invalid_input, path + ": a damaged " + format + " file" +
+                                         (n > 0 ? " (entity " + std::to_string(n) + ": " : " (") +
+                                         what + ")");
+  }
+}
+}  // namespace
+
 CadGeometry read_cad(const std::string& path, bool want_surface, const std::string& units) {
   if (!std::filesystem::is_regular_file(path))
     throw Error(Errc::invalid_input, path + ": cannot open file for reading");
@@ -541,6 +657,7 @@ CadGeometry read_cad(const std::string& path, bool want_surface, const std::stri
       STEPControl_Reader reader;
       if (reader.ReadFile(path.c_str()) != IFSelect_RetDone)
         throw Error(Errc::invalid_input, path + ": not a readable STEP file");
+      refuse_failed_load(reader, path, "STEP");
       TColStd_SequenceOfAsciiString len, ang, solid;
       reader.FileUnits(len, ang, solid);
       if (len.Length() > 0) g.file_units = lower(len.First().ToCString());
@@ -551,9 +668,11 @@ CadGeometry read_cad(const std::string& path, bool want_surface, const std::stri
       Interface_Static::SetCVal("xstep.cascade.unit", u.step);
       UnitsMethods::SetCasCadeLengthUnit(u.mm);
       Interface_Static::SetIVal("read.iges.bspline.continuity", 0);  // keep C0 B-splines whole
+      check_iges_structure(path);
       IGESControl_Reader reader;
       if (reader.ReadFile(path.c_str()) != IFSelect_RetDone)
         throw Error(Errc::invalid_input, path + ": not a readable IGES file");
+      refuse_failed_load(reader, path, "IGES");
       const auto model = Handle(IGESData_IGESModel)::DownCast(reader.Model());
       if (!model.IsNull() && !model->GlobalSection().UnitName().IsNull())
         g.file_units = lower(model->GlobalSection().UnitName()->ToCString());

@@ -497,6 +497,30 @@ TEST(Cli, BadProfilesAndPolesLeaveNoFile) {
   EXPECT_EQ(both.status, 2);
 }
 
+TEST(Cli, DamagedCadFilesAreRefusedNotCrashedOn) {
+  // Each of these once crashed qmotion inside OpenCASCADE's readers (SIGSEGV): mutated
+  // STEP/IGES files written by `qmotion trajectory`, and one whose entity name lost a letter
+  // and whose B-spline line was cut. Now each is bad input, whichever command reads it.
+  const fs::path m = five_motion("elliptic", "tr");
+  std::vector<fs::path> files;
+  for (const auto& e : fs::directory_iterator(kData + "/damaged_cad")) files.push_back(e.path());
+  ASSERT_GE(files.size(), 12u);
+  for (const auto& f : files) {
+    const fs::path out = scratch_dir() / "damaged_out.step";
+    fs::remove(out);
+    for (const auto& args : {std::vector<std::string>{"sweep", m.string(), "--profile", f.string(),
+                                                      "-o", out.string()},
+                             std::vector<std::string>{"check", f.string(), "--motion", m.string(),
+                                                      "--point", "1,2,3"}}) {
+      const Result r = run(args);
+      EXPECT_EQ(r.status, 2) << args[0] << " " << f << ": " << r.err;
+      EXPECT_NE(r.err.find(f.string()), std::string::npos) << r.err;
+      EXPECT_NE(r.err.find("damaged"), std::string::npos) << r.err;
+      EXPECT_FALSE(fs::exists(out)) << f;
+    }
+  }
+}
+
 /// Multiplicity of each distinct interior knot of a clamped vector.
 std::map<double, int> interior_multiplicities(const json& knots, int degree) {
   std::map<double, int> m;
