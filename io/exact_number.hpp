@@ -1,12 +1,17 @@
 // io/exact_number.hpp
 #pragma once
 // Exact conversion of number text to CGAL::Exact_rational (exact mode).
+#include <cstdlib>
 #include <qmotion/kernel/cgal_scalar.hpp>
 #include <qmotion/kernel/error.hpp>
 #include <sstream>
 #include <string>
 
 namespace qmotion::io {
+
+/// Largest decimal exponent of an exact number (10^1000 is far beyond any length in a
+/// CAD file; the bound keeps the big-number work per number small).
+inline constexpr long kMaxExponent = 1000;
 
 /// The exact rational value of an integer, decimal ("-1.25e-3") or "p/q" text, as
 /// produced by parse_number_text. Throws Errc::invalid_input on other text.
@@ -36,7 +41,11 @@ inline kernel::Rational exact_from_text(const std::string& text) {
   long exp10 = 0;
   const auto e = s.find_first_of("eE");
   if (e != std::string::npos) {
-    exp10 = std::stol(s.substr(e + 1));
+    const std::string digits = s.substr(e + 1);
+    const auto first = digits.find_first_not_of("+-0");
+    if (first != std::string::npos && digits.size() - first > 6)
+      throw Error(Errc::invalid_input, "'" + text + "' has an exponent out of range");
+    exp10 = first == std::string::npos ? 0 : std::strtol(digits.c_str(), nullptr, 10);
     s.erase(e);
   }
   const auto dot = s.find('.');
@@ -45,12 +54,12 @@ inline kernel::Rational exact_from_text(const std::string& text) {
     s.erase(dot, 1);
   }
   if (s.empty() || s == "-" || s == "+") s += "0";
-  if (exp10 < -100000 || exp10 > 100000)
-    throw Error(Errc::invalid_input, "'" + text + "' has an exponent out of range");
+  if (exp10 < -kMaxExponent || exp10 > kMaxExponent)
+    throw Error(Errc::invalid_input, "'" + text + "' has an exponent out of range (at most " +
+                                         std::to_string(kMaxExponent) + " in magnitude)");
   Rational value = integer(s);
-  const Rational ten(10);
-  Rational scale(1);
-  for (long i = 0; i < (exp10 < 0 ? -exp10 : exp10); ++i) scale *= ten;
+  const Rational scale("1" +
+                       std::string(static_cast<std::size_t>(exp10 < 0 ? -exp10 : exp10), '0'));
   if (exp10 < 0) return Rational(value / scale);
   return Rational(value * scale);
 }

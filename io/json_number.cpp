@@ -141,6 +141,10 @@ std::string read_text_file(const std::string& path) {
 json read_json_file(const std::string& path) { return parse_json(read_text_file(path), path); }
 
 Number parse_number_text(const std::string& raw, const std::string& where) {
+  if (raw.size() > kMaxNumberChars)
+    throw Error(Errc::invalid_input, where + ": a number of " + std::to_string(raw.size()) +
+                                         " characters (at most " + std::to_string(kMaxNumberChars) +
+                                         ")");
   static const std::regex decimal(R"(\s*([+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?)\s*)");
   static const std::regex ratio(R"(\s*([+-]?\d+)\s*/\s*([+-]?\d+)\s*)");
   std::smatch m;

@@ -7,6 +7,10 @@ namespace qmotion::io {
 
 /// A number read from a file with its source text, so that exact mode can convert the text
 /// itself ("0.1" is exactly 1/10 there, not the double nearest it).
+/// Longest number text accepted (digits of an exact "p/q" included): bounds the work of
+/// exact mode per number.
+inline constexpr std::size_t kMaxNumberChars = 1000;
+
 struct Number {
   std::string text;  ///< canonical source text: integer, decimal or "p/q"
   double value = 0;  ///< nearest double

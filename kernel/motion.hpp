@@ -148,7 +148,11 @@ std::vector<double> find_poles(const QMotion<Scalar>& m, double rel_tol = 1e-16)
   std::vector<std::pair<double, double>> leaves;  // (t, weight)
   std::vector<Bernstein<double>> stack = bezier_pieces(w);
   std::size_t budget = 200000;
-  while (!stack.empty() && budget-- > 0) {
+  while (!stack.empty()) {
+    if (budget-- == 0)
+      throw Error(Errc::numerical_failure,
+                  "the zeros of the rotational part could not be isolated within 200000 "
+                  "subdivisions (the weight |Q0|^2 stays near zero over a long stretch)");
     Bernstein<double> p = std::move(stack.back());
     stack.pop_back();
     double lo = p[0];

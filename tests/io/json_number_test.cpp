@@ -50,6 +50,21 @@ TEST(JsonNumber, BadNumbersNameTheField) {
                            Errc::invalid_input, {"pos", "expected a number"}));
 }
 
+TEST(JsonNumber, WorkPerNumberIsBounded) {
+  // A number's text and an exact number's exponent are bounded: the big-number work of
+  // exact mode stays small per number, and no conversion throws a standard exception.
+  const std::string long_text = "1." + std::string(io::kMaxNumberChars, '3');
+  EXPECT_TRUE(throws_error([&] { parse_number_text(long_text, "poses[0].t"); }, Errc::invalid_input,
+                           {"poses[0].t", "characters", "at most 1000"}));
+  EXPECT_NO_THROW(parse_number_text("1." + std::string(io::kMaxNumberChars - 3, '3'), "f"));
+  EXPECT_TRUE(throws_error([] { io::exact_from_text("1e99999999999999999999"); },
+                           Errc::invalid_input, {"exponent out of range"}));
+  EXPECT_TRUE(throws_error([] { io::exact_from_text("1e1001"); }, Errc::invalid_input,
+                           {"exponent out of range"}));
+  EXPECT_EQ(io::exact_from_text("25e-1000") * io::exact_from_text("4e1000"), kernel::Rational(100));
+  EXPECT_EQ(io::exact_from_text("-1.5e+0003"), kernel::Rational(-1500));
+}
+
 TEST(JsonNumber, SyntaxErrorsGiveLineAndColumn) {
   EXPECT_TRUE(throws_error([] { parse_json("{\n  \"a\": [1, 2,\n}", "f.json"); },
                            Errc::invalid_input, {"f.json", "line 3"}));
