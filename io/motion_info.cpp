@@ -61,6 +61,14 @@ json interpolation_residuals(const kernel::QMotion<Scalar>& m,
 json motion_info(const MotionFile& f, bool exact) {
   const kernel::Motion<double> motion = to_motion(f);  // also validates the method block
   const kernel::QMotion<double>& m = motion.curve;
+  if (exact && (m.degree() > kMaxExactInfoDegree || m.segments() > kMaxExactInfoSegments))
+    throw Error(Errc::invalid_input,
+                f.source + ": info --exact is limited to motions of degree " +
+                    std::to_string(kMaxExactInfoDegree) + " and " +
+                    std::to_string(kMaxExactInfoSegments) + " segments (this one: degree " +
+                    std::to_string(m.degree()) + ", " + std::to_string(m.segments()) +
+                    " segments): the exact order is an exact rational rank whose cost grows "
+                    "as the fifth power of the degree; use info without --exact");
   json out;
   out["type"] = "q-motion";
   out["basis"] = m.basis == kernel::Basis::bezier ? "bezier" : "bspline";

@@ -263,6 +263,18 @@ TEST(Cli, InterpolateExactIsExact) {
   }
 }
 
+TEST(Cli, ExactInfoWorkIsBounded) {
+  // Degree 21 (one above the limit): the exact rank would take about 9 s and grows as the
+  // fifth power of the degree; the double report is immediate.
+  const std::string big = test_data("limits/degree_21.json");
+  const Result r = run({"info", "--exact", big});
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("limited to motions of degree 20"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(big), std::string::npos) << r.err;
+  EXPECT_EQ(r.out, "");
+  EXPECT_EQ(run_json({"info", big})["degree"], 21);
+}
+
 TEST(Cli, InterpolateRefusalsExitWithTheirStatusAndLeaveNoFile) {
   const std::string d = kData + "/refusals/";
   struct Case {
