@@ -403,6 +403,13 @@ PYBIND11_MODULE(qmotion, m) {
       "planar profile. Returns a dict: degrees, continuity, faces, poles, units, volume.");
 
   m.def(
+      "demo", [](const std::string& dir) { return to_python(qm::io::write_demo(dir)); },
+      py::arg("dir") = "demo-out",
+      "Runs `qmotion demo`: five embedded poses -> motion -> trajectories and the kinematic "
+      "surface of a parabola as JSON/STEP/IGES, checked, with demo.svg and report.json, all "
+      "written into dir or none of them. Returns the report as a dict.");
+
+  m.def(
       "check",
       [](const std::string& path, const PyMotion& p, const py::object& profile,
          const py::object& point, int grid) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -852,6 +853,28 @@ TEST(Cli, DemoWritesEveryFormatAndAnExactnessReport) {
   EXPECT_NE(slurp(dir / "demo.svg").find("<polyline"), std::string::npos);
   for (const auto& e : fs::directory_iterator(dir))
     EXPECT_NE(e.path().filename().string().rfind(".qmotion", 0), 0u);
+}
+
+TEST(Cli, DemoWritesAllItsFilesOrNone) {
+  // A folder where the demo must write a file: exit 2, and the folder holds what it held.
+  const fs::path dir = scratch_dir() / "demo_blocked";
+  fs::remove_all(dir);
+  fs::create_directories(dir / "surface_parabola.step");
+  std::ofstream(dir / "mine.txt") << "the user's";
+  const Result r = run({"demo", "-o", dir.string()});
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("surface_parabola.step"), std::string::npos) << r.err;
+  std::vector<std::string> left;
+  for (const auto& e : fs::directory_iterator(dir)) left.push_back(e.path().filename().string());
+  std::sort(left.begin(), left.end());
+  EXPECT_EQ(left, (std::vector<std::string>{"mine.txt", "surface_parabola.step"}));
+  for (const auto& e : fs::directory_iterator(scratch_dir()))
+    EXPECT_EQ(e.path().filename().string().find(".qmotion-demo"), std::string::npos);
+  // Into a folder that exists, with a trailing slash: every file, the user's kept.
+  fs::remove_all(dir / "surface_parabola.step");
+  ASSERT_EQ(run({"demo", "-o", dir.string() + "/"}).status, 0);
+  EXPECT_TRUE(fs::exists(dir / "mine.txt"));
+  EXPECT_TRUE(fs::exists(dir / "surface_parabola.step"));
 }
 
 }  // namespace

@@ -187,8 +187,16 @@ def test_errors_have_the_clis_class_and_message(tmp_path):
     assert not (tmp_path / "x.step").exists()
 
 
+def test_demo_does_the_main_job(tmp_path):
+    report = qmotion.demo(str(tmp_path / "demo"))
+    assert len(report["exactness"]) == 9
+    assert max(c["relative_deviation"] for c in report["exactness"]) <= 1e-11
+    assert (tmp_path / "demo" / "report.json").exists()
+
+
 def test_every_function_is_documented():
-    for name in ("interpolate", "trajectory", "sweep", "export", "check", "load", "poses", "read_poses"):
+    for name in ("interpolate", "trajectory", "sweep", "export", "check", "load", "poses", "read_poses",
+                 "demo"):
         doc = getattr(qmotion, name).__doc__
         assert doc and len(doc) > 80, name
     assert "kinematic surface" in qmotion.sweep.__doc__

@@ -1,0 +1,128 @@
+// io/demo.cpp
+#include <unistd.h>
+
+#include <filesystem>
+#include <qmotion/io/atomic_file.hpp>
+#include <qmotion/io/demo.hpp>
+#include <qmotion/io/export.hpp>
+#include <qmotion/io/interpolate.hpp>
+#include <qmotion/io/nurbs_json.hpp>
+#include <qmotion/io/svg.hpp>
+#include <qmotion/kernel/error.hpp>
+#include <vector>
+
+namespace qmotion::io {
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+/// The five sample poses of the demo (the shared five_positions.json).
+constexpr const char* kDemoPoses = R"({"units":"mm","poses":[
+ {"t":0.0,"position":[0,0,0],"rotation":{"quaternion":[1,0,0,0]}},
+ {"t":0.25,"position":[40,10,5],"rotation":{"axis_angle":{"axis":[0,0,1],"angle_deg":45}}},
+ {"t":0.5,"position":[70,40,20],"rotation":{"axis_angle":{"axis":[1,1,0],"angle_deg":80}}},
+ {"t":0.75,"position":[90,80,10],"rotation":{"quaternion":[0.5,0.162937633978,0.81468816989,0.244406450967]}},
+ {"t":1.0,"position":[120,100,0],"rotation":{"axis_angle":{"axis":[0,1,1],"angle_deg":150}}}]})";
+
+/// Moves every file of `from` into `to`: all of them, or (undoing the moves done) none.
+void publish(const fs::path& from, const fs::path& to) {
+  std::vector<fs::path> moved;
+  try {
+    for (const auto& e : fs::directory_iterator(from)) {
+      const fs::path target = to / e.path().filename();
+      if (fs::exists(target) && fs::is_directory(target))
+        throw Error(Errc::invalid_input, "-o " + to.string() + ": " + target.filename().string() +
+                                             " is a folder; the demo writes a file of that name");
+      fs::rename(e.path(), target);
+      moved.push_back(target);
+    }
+  } catch (const fs::filesystem_error& err) {
+    for (const auto& m : moved) {
+      std::error_code ec;
+      fs::remove(m, ec);
+    }
+    throw Error(Errc::invalid_input, "-o " + to.string() + ": cannot write the demo (" +
+                                         err.code().message() + "); nothing was written");
+  } catch (...) {
+    for (const auto& m : moved) {
+      std::error_code ec;
+      fs::remove(m, ec);
+    }
+    throw;
+  }
+}
+
+}  // namespace
+
+json write_demo(const std::string& dir) {
+  std::error_code ec;
+  fs::path out = fs::absolute(fs::path(dir), ec).lexically_normal();
+  if (out.filename().empty()) out = out.parent_path();  // "dir/"
+  const bool existed = fs::is_directory(out, ec);
+  fs::create_directories(out.parent_path(), ec);
+  // Build everything in a scratch folder beside the output: a failure leaves nothing behind.
+  const fs::path tmp = out.parent_path() / (".qmotion-demo-" + std::to_string(::getpid()) + "-" +
+                                            out.filename().string());
+  fs::remove_all(tmp, ec);
+  if (!fs::create_directories(tmp, ec) || ec)
+    throw Error(Errc::invalid_input, "-o " + dir + ": cannot create the output folder");
+  struct Cleanup {
+    fs::path p;
+    ~Cleanup() {
+      std::error_code e;
+      fs::remove_all(p, e);
+    }
+  } cleanup{tmp};
+
+  const PoseSet set = parse_poses_json(kDemoPoses, "embedded demo poses");
+  InterpolateOptions opt;  // elliptic + TR (Algorithm 1), the poses' own t
+  opt.form = "bezier";
+  const InterpolatedMotion interpolated = interpolate(set, opt);
+  const json& motion_doc = interpolated.document;
+  const std::string& summary = interpolated.summary;
+  write_file_atomic((tmp / "motion.json").string(), motion_doc.dump(1) + "\n");
+  kernel::Motion<double> lm = interpolated.motion;
+  lm.name = "motion.json";  // what the files' headers cite
+  // The paper's Figure 5 idea: a parabola of the moving space swept by the motion.
+  const sweep::NurbsCurve<double> parabola{
+      2, {0, 0, 0, 1, 1, 1}, {{-10, 0, 10}, {0, 0, -10}, {10, 0, 10}}, {1, 1, 1}};
+  write_file_atomic((tmp / "parabola.json").string(), curve_to_json(parabola).dump(1) + "\n");
+
+  json report = json::array();
+  for (const std::string ext : {".json", ".step", ".igs"}) {
+    for (const auto& [name, point] :
+         {std::make_pair(std::string("trajectory_origin"), Eigen::Vector3d(0, 0, 0)),
+          std::make_pair(std::string("trajectory_0_0_1"), Eigen::Vector3d(0, 0, 1))}) {
+      ExportOptions go;
+      go.output = (tmp / (name + ext)).string();
+      const auto r = export_trajectory(lm, point, go);
+      json c = check_geometry(go.output, lm, std::nullopt, point);
+      c["file"] = name + ext;
+      c["degree"] = r.degree_u;
+      report.push_back(c);
+    }
+    ExportOptions go;
+    go.output = (tmp / ("surface_parabola" + ext)).string();
+    export_surface(lm, sweep::single_edge(parabola), "a parabola", go);
+    json c = check_geometry(go.output, lm, sweep::single_edge(parabola), std::nullopt);
+    c["file"] = "surface_parabola" + ext;
+    report.push_back(c);
+  }
+  write_file_atomic((tmp / "demo.svg").string(), render_demo_svg(lm, parabola));
+  const json doc{{"motion", {{"file", "motion.json"}, {"summary", summary}}},
+                 {"exactness", report}};
+  write_file_atomic((tmp / "report.json").string(), doc.dump(2) + "\n");
+  if (!existed) {
+    // A new folder appears whole: one rename.
+    fs::rename(tmp, out, ec);
+    if (ec)
+      throw Error(Errc::invalid_input,
+                  "-o " + dir + ": cannot create the output folder (" + ec.message() + ")");
+  } else {
+    publish(tmp, out);
+  }
+  return doc;
+}
+
+}  // namespace qmotion::io
