@@ -1,5 +1,6 @@
 // io/json_number.cpp
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <qmotion/io/json_number.hpp>
 #include <qmotion/kernel/error.hpp>
@@ -129,9 +130,14 @@ json parse_json(const std::string& text, const std::string& source) {
   return root;
 }
 
-std::string read_text_file(const std::string& path) {
+std::string read_text_file(const std::string& path, std::uintmax_t max_bytes) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(Errc::invalid_input, path + ": cannot open file for reading");
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  if (!ec && size > max_bytes)
+    throw Error(Errc::invalid_input, path + ": a file of " + std::to_string(size) +
+                                         " bytes (at most " + std::to_string(max_bytes) + ")");
   std::ostringstream ss;
   ss << in.rdbuf();
   if (in.bad()) throw Error(Errc::invalid_input, path + ": read error");

@@ -1,5 +1,6 @@
 // io/json_number.hpp
 #pragma once
+#include <cstdint>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -27,8 +28,12 @@ nlohmann::json parse_json(const std::string& text, const std::string& source);
 /// file cannot be read.
 nlohmann::json read_json_file(const std::string& path);
 
-/// Reads the whole file as text; throws Errc::invalid_input naming the file.
-std::string read_text_file(const std::string& path);
+/// Largest file read (bounded memory: a 10^5-pose motion file is about 130 MB).
+inline constexpr std::uintmax_t kMaxFileBytes = std::uintmax_t(512) << 20;
+
+/// The whole file; Errc::invalid_input naming the path when it cannot be read or is larger
+/// than max_bytes.
+std::string read_text_file(const std::string& path, std::uintmax_t max_bytes = kMaxFileBytes);
 
 /// Parses a number written as integer, decimal (with optional exponent) or "p/q".
 /// Throws Errc::invalid_input with `where` in the message when the text is not a finite

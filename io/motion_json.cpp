@@ -305,6 +305,10 @@ MotionFile parse_motion(const json& doc, const std::string& source) {
   const json& ctrl = require(doc, "control_points", source);
   if (!ctrl.is_array())
     throw Error(Errc::invalid_input, source + ": control_points: expected an array");
+  if (ctrl.size() > kMaxMotionControlPoints)
+    throw Error(Errc::invalid_input, source + ": control_points: more than " +
+                                         std::to_string(kMaxMotionControlPoints) +
+                                         " (the limit keeps memory bounded)");
   bool real_nonzero = false;
   for (std::size_t i = 0; i < ctrl.size(); ++i) {
     const std::string w = source + ": control_points[" + std::to_string(i) + "]";

@@ -15,6 +15,10 @@
 
 namespace qmotion::io {
 
+/// Most control points a motion file may hold: a B-spline motion through the most poses
+/// a pose file may hold (10^5) has about 7 x 10^5.
+inline constexpr std::size_t kMaxMotionControlPoints = 1000000;
+
 /// A validated motion file (SPEC §5), numbers with their source text so that exact mode
 /// reads them exactly.
 struct MotionFile {

@@ -84,6 +84,13 @@ void validate_rotation(const RotationInput& r, const Where& w) {
   }
 }
 
+[[noreturn]] void too_many_poses(const std::string& source) {
+  throw Error(Errc::invalid_input,
+              source + ": more than " + std::to_string(kMaxPoses) +
+                  " poses (the limit keeps memory bounded: 10^5 poses take about 1 GB to "
+                  "interpolate and 4 GB to sweep); split the motion");
+}
+
 void validate_set(PoseSet& set) {
   const auto& P = set.poses;
   if (P.size() < 2)
@@ -163,6 +170,7 @@ PoseSet parse_poses_json_value(const json& doc, const std::string& source) {
   }
   const json& poses = require(doc, "poses", source);
   if (!poses.is_array()) throw Error(Errc::invalid_input, source + ": poses: expected an array");
+  if (poses.size() > kMaxPoses) too_many_poses(source);
   for (std::size_t i = 0; i < poses.size(); ++i) {
     const json& p = poses[i];
     const std::string where = pose_where(source, i, "");
@@ -227,6 +235,7 @@ PoseSet parse_poses_csv(const std::string& text, const std::string& source) {
     for (std::size_t k = 0; k < cells.size(); ++k)
       v.push_back(parse_number_text(cells[k], where + ", column '" + header[k] + "' (pose " +
                                                   std::to_string(set.poses.size()) + ")"));
+    if (set.poses.size() == kMaxPoses) too_many_poses(source);
     PoseInput p;
     std::size_t o = 0;
     if (header.size() == 8) p.t = v[o++];

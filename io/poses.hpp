@@ -30,6 +30,9 @@ struct PoseInput {
   RotationInput rotation;
 };
 
+/// Most poses a file may hold (bounded memory; see README's limits).
+inline constexpr std::size_t kMaxPoses = 100000;
+
 /// A validated pose file: at least two poses, finite numbers, non-zero rotations, proper
 /// rotation matrices, and strictly increasing t when t is given (for all poses or none).
 struct PoseSet {

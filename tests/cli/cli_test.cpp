@@ -11,6 +11,7 @@
 #include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <qmotion/io/poses.hpp>
 #include <sstream>
 #include <vector>
 
@@ -168,6 +169,34 @@ TEST(Cli, BadMotionFilesExitTwoNamingTheFile) {
       run({"eval", kExamples + "/motions/bezier_tr.json", "--t", "0", "--point", "1,2"});
   EXPECT_EQ(badpoint.status, 2);
   EXPECT_NE(badpoint.err.find("--point"), std::string::npos);
+}
+
+TEST(Cli, MorePosesThanTheLimitAreRefused) {
+  // 10^5 poses take about 1 GB to interpolate and 4 GB to sweep: one more is refused before
+  // any work, in CSV and in JSON.
+  const fs::path csv = scratch_dir() / "too_many.csv";
+  {
+    std::ofstream f(csv);
+    f << "x,y,z,qw,qx,qy,qz\n";
+    for (std::size_t i = 0; i <= io::kMaxPoses; ++i) f << i << ",0,0,1,0,0,0\n";
+  }
+  const fs::path json_file = scratch_dir() / "too_many.json";
+  {
+    std::ofstream f(json_file);
+    f << "{\"poses\":[";
+    for (std::size_t i = 0; i <= io::kMaxPoses; ++i)
+      f << (i ? "," : "") << "{\"position\":[" << i
+        << ",0,0],\"rotation\":{\"quaternion\":[1,0,0,0]}}";
+    f << "]}";
+  }
+  for (const auto& in : {csv, json_file}) {
+    const fs::path out = scratch_dir() / "too_many_out.json";
+    fs::remove(out);
+    const Result r = run({"interpolate", in.string(), "-o", out.string()});
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_NE(r.err.find(in.string() + ": more than 100000 poses"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out));
+  }
 }
 
 TEST(Cli, BadPoseFilesExitTwoAndLeaveNoOutput) {

@@ -1,4 +1,6 @@
 // tests/io/json_number_test.cpp mirrors io/json_number.hpp
+#include <filesystem>
+#include <fstream>
 #include <qmotion/io/exact_number.hpp>
 #include <qmotion/io/json_number.hpp>
 
@@ -63,6 +65,16 @@ TEST(JsonNumber, WorkPerNumberIsBounded) {
                            {"exponent out of range"}));
   EXPECT_EQ(io::exact_from_text("25e-1000") * io::exact_from_text("4e1000"), kernel::Rational(100));
   EXPECT_EQ(io::exact_from_text("-1.5e+0003"), kernel::Rational(-1500));
+}
+
+TEST(JsonNumber, FilesAboveTheSizeLimitAreRefused) {
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "qmotion_size_test.json").string();
+  std::ofstream(path) << std::string(100, ' ') << "{}";
+  EXPECT_TRUE(throws_error([&] { io::read_text_file(path, 50); }, Errc::invalid_input,
+                           {path, "102 bytes", "at most 50"}));
+  EXPECT_EQ(io::read_text_file(path, 102).size(), 102u);
+  EXPECT_GE(io::kMaxFileBytes, std::uintmax_t(256) << 20);  // a 10^5-pose motion file fits
 }
 
 TEST(JsonNumber, SyntaxErrorsGiveLineAndColumn) {

@@ -57,6 +57,15 @@ TEST(MotionJson, RoundTripDoubleAndExact) {
   }
 }
 
+TEST(MotionJson, TooManyControlPointsAreRefusedBeforeTheyAreRead) {
+  nlohmann::json doc{
+      {"type", "q-motion"}, {"basis", "bspline"}, {"degree", 3}, {"param_range", {0, 1}}};
+  doc["control_points"] = nlohmann::json::array();
+  for (std::size_t i = 0; i <= io::kMaxMotionControlPoints; ++i) doc["control_points"].push_back(0);
+  EXPECT_TRUE(throws_error([&] { io::parse_motion(doc, "huge.json"); }, Errc::invalid_input,
+                           {"huge.json", "control_points", "more than 1000000"}));
+}
+
 TEST(MotionJson, EveryBadMotionIsRefusedWithItsReason) {
   const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
       {"wrong_type.json", {"type"}},
