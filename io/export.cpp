@@ -9,6 +9,7 @@
 #include <qmotion/io/json_number.hpp>
 #include <qmotion/io/nurbs_json.hpp>
 #include <qmotion/io/occt.hpp>
+#include <qmotion/io/self_intersection.hpp>
 #include <qmotion/io/units.hpp>
 #include <qmotion/kernel/error.hpp>
 #include <qmotion/sweep/approximate.hpp>
@@ -363,6 +364,20 @@ std::vector<sweep::NurbsSurface<double>> compute_surfaces(const kernel::Motion<d
     }
     r.volume = sweep::swept_volume(lm, region) * std::pow(r.unit_factor, 3);
   }
+#ifdef QMOTION_WITH_CGAL
+  if (opt.self_intersection_check) {
+    r.self_intersection = sweep_self_intersections(lm, profile);
+    const auto& si = *r.self_intersection;
+    if (si.found() && (opt.fail_on_self_intersection || opt.solid))
+      throw Error(Errc::numerical_failure,
+                  std::string(opt.solid ? "--solid" : "--fail-on-self-intersection") +
+                      ": the sweep of " + profile_name + " intersects itself (" +
+                      std::to_string(si.pairs) + " crossing triangle pairs of a " +
+                      std::to_string(si.samples_t) + " x " + std::to_string(si.samples_v) +
+                      " tessellation; " + si.ranges() + ")" +
+                      (opt.solid ? ": a self-intersecting shell bounds no solid" : ""));
+  }
+#endif
   std::vector<sweep::NurbsSurface<double>> surfaces;
   for (const auto& e : profile.edges) {
     surfaces.push_back(edge_surface(lm, e, opt, f, r, tol));

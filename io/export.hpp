@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <qmotion/io/motion_json.hpp>
+#include <qmotion/io/self_intersection.hpp>
 #include <qmotion/sweep/factors.hpp>
 #include <qmotion/sweep/nurbs.hpp>
 #include <qmotion/sweep/profiles.hpp>
@@ -20,6 +21,11 @@ struct ExportOptions {
   std::string units;         ///< the unit to convert into and declare (default: the motion's)
   bool single_face = false;  ///< surfaces: one face per profile edge, not split at C0 knots
   bool solid = false;        ///< surfaces: closed planar profile, add caps, one solid
+  /// Surfaces: tessellate and look for self-intersections (CGAL); the result says where.
+  bool self_intersection_check = true;
+  /// Surfaces: a self-intersecting sweep is refused (Errc::numerical_failure), as --solid
+  /// always does.
+  bool fail_on_self_intersection = false;
 };
 
 /// What was written, for messages and the demo's report.
@@ -35,6 +41,8 @@ struct ExportResult {
   std::string units;                       ///< the declared unit of the numbers
   double unit_factor = 1;                  ///< motion's unit -> declared unit
   std::optional<double> volume;            ///< --solid: the independent swept volume
+  /// Surfaces: what the self-intersection check found (absent when not run).
+  std::optional<SelfIntersection> self_intersection;
 };
 
 /// The trajectory of the point as NURBS, exact at its minimal degree with positive weights

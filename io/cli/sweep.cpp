@@ -30,6 +30,9 @@ Command add_sweep(CLI::App& app) {
   sub->add_flag("--single-face", o->options.single_face,
                 "STEP/IGES: one face per profile edge instead of a shell of C1 faces split at the "
                 "C0 knots");
+  sub->add_flag("--fail-on-self-intersection", o->options.fail_on_self_intersection,
+                "Exit 3 (and write nothing) when the sweep intersects itself; without it a "
+                "warning names where");
   sub->add_flag("--solid", o->options.solid,
                 "Closed planar profile: add planar caps at both ends and write one closed solid");
   return {
@@ -37,6 +40,10 @@ Command add_sweep(CLI::App& app) {
         const kernel::Motion<double> lm = io::load_motion(o->motion);
         const auto profile = io::read_profile(o->profile, lm.units);
         const auto r = io::export_surface(lm, profile, o->profile, o->options);
+        if (r.self_intersection && r.self_intersection->found())
+          std::cerr << "qmotion: warning: the sweep intersects itself ("
+                    << r.self_intersection->pairs << " crossing triangle pairs; "
+                    << r.self_intersection->ranges() << ")\n";
         std::cerr << "qmotion: wrote " << r.path << " (degrees " << r.degree_u << " x "
                   << r.degree_v << ", C" << r.continuity_u << " x C" << r.continuity_v << ", "
                   << r.faces << (r.faces == 1 ? " face, " : " faces, ") << r.poles << " poles, "

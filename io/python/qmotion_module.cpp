@@ -140,6 +140,10 @@ json result_json(const qm::io::ExportResult& r) {
          {"continuity_v", r.continuity_v}};
   if (r.approx_deviation) j["approximation_deviation"] = *r.approx_deviation;
   if (r.volume) j["volume"] = *r.volume;
+  if (r.self_intersection) {
+    j["self_intersecting"] = r.self_intersection->found();
+    if (r.self_intersection->found()) j["self_intersection"] = r.self_intersection->ranges();
+  }
   return j;
 }
 

@@ -539,6 +539,61 @@ TEST(Cli, BadProfilesAndPolesLeaveNoFile) {
   EXPECT_EQ(both.status, 2);
 }
 
+TEST(Cli, SelfIntersectingSweepsAreFlagged) {
+  // Sweeps that cross themselves, and clean ones: the mesh check (CGAL) must tell them apart.
+  struct Case {
+    std::string poses, profile;
+    bool crosses;
+  };
+  const std::string d = "self_intersection/";
+  const std::vector<Case> cases = {
+      // A long segment turning by three quarters about an axis inside it (5 from one end):
+      // near the axis the two sides sweep the same sector twice.
+      {d + "turn270.json", "segment:-5,0,0:15,0,0", true},
+      // The same segment turning by a half-turn about its midpoint covers the disk once.
+      {d + "half_turn.json", "segment:-10,0,0:10,0,0", false},
+      // A tube of radius 3 along a coil of pitch 2 (the coils overlap), and of pitch 20.
+      {d + "coil_tight.json", "circle:3", true},
+      {d + "coil_open.json", "circle:3", false},
+      // A tube along a figure-eight crosses itself at the middle.
+      {d + "figure8.json", "circle:3", true},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.poses);
+    const fs::path m = scratch_dir() / "si_motion.json";
+    ASSERT_EQ(run({"interpolate", test_data(c.poses), "-o", m.string()}).status, 0);
+    const fs::path out = scratch_dir() / "si.step";
+    fs::remove(out);
+    const Result r = run({"sweep", m.string(), "--profile", c.profile, "-o", out.string()});
+    EXPECT_EQ(r.status, 0) << r.err;  // a warning, the file is written
+    EXPECT_EQ(r.err.find("intersects itself") != std::string::npos, c.crosses) << r.err;
+    if (c.crosses) {
+      EXPECT_NE(r.err.find("t in ["), std::string::npos) << r.err;
+    }
+    fs::remove(out);
+    const Result f = run({"sweep", m.string(), "--profile", c.profile, "-o", out.string(),
+                          "--fail-on-self-intersection"});
+    EXPECT_EQ(f.status, c.crosses ? 3 : 0) << f.err;
+    EXPECT_EQ(fs::exists(out), !c.crosses);
+  }
+  // --solid refuses a self-intersecting tube and accepts the clean one (no back-sweep in
+  // either: the disk always moves along its normal).
+  const fs::path m = scratch_dir() / "si_coil.json";
+  for (const auto& [poses, ok] :
+       {std::make_pair(d + "coil_tight.json", false), std::make_pair(d + "coil_open.json", true)}) {
+    ASSERT_EQ(run({"interpolate", test_data(poses), "-o", m.string()}).status, 0);
+    const fs::path out = scratch_dir() / "si_solid.step";
+    fs::remove(out);
+    const Result r =
+        run({"sweep", m.string(), "--profile", "circle:3", "--solid", "-o", out.string()});
+    EXPECT_EQ(r.status, ok ? 0 : 3) << poses << ": " << r.err;
+    if (!ok) {
+      EXPECT_NE(r.err.find("bounds no solid"), std::string::npos) << r.err;
+    }
+    EXPECT_EQ(fs::exists(out), ok);
+  }
+}
+
 TEST(Cli, DamagedCadFilesAreRefusedNotCrashedOn) {
   // Each of these once crashed qmotion inside OpenCASCADE's readers (SIGSEGV): mutated
   // STEP/IGES files written by `qmotion trajectory`, and one whose entity name lost a letter
