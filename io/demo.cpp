@@ -26,30 +26,26 @@ constexpr const char* kDemoPoses = R"({"units":"mm","poses":[
  {"t":1.0,"position":[120,100,0],"rotation":{"axis_angle":{"axis":[0,1,1],"angle_deg":150}}}]})";
 
 /// Moves every file of `from` into `to`: all of them, or (undoing the moves done) none.
+/// A folder in the way is found before anything moves.
 void publish(const fs::path& from, const fs::path& to) {
+  std::vector<fs::path> files;
+  for (const auto& e : fs::directory_iterator(from)) {
+    if (fs::is_directory(to / e.path().filename()))
+      throw Error(Errc::invalid_input, "-o " + to.string() + ": " + e.path().filename().string() +
+                                           " is a folder; the demo writes a file of that name");
+    files.push_back(e.path());
+  }
   std::vector<fs::path> moved;
-  try {
-    for (const auto& e : fs::directory_iterator(from)) {
-      const fs::path target = to / e.path().filename();
-      if (fs::exists(target) && fs::is_directory(target))
-        throw Error(Errc::invalid_input, "-o " + to.string() + ": " + target.filename().string() +
-                                             " is a folder; the demo writes a file of that name");
-      fs::rename(e.path(), target);
-      moved.push_back(target);
+  for (const auto& f : files) {
+    std::error_code ec;
+    fs::rename(f, to / f.filename(), ec);
+    if (ec) {
+      const std::string why = ec.message();
+      for (const auto& m : moved) fs::remove(m, ec);
+      throw Error(Errc::invalid_input, "-o " + to.string() + ": cannot write the demo (" + why +
+                                           "); nothing was written");
     }
-  } catch (const fs::filesystem_error& err) {
-    for (const auto& m : moved) {
-      std::error_code ec;
-      fs::remove(m, ec);
-    }
-    throw Error(Errc::invalid_input, "-o " + to.string() + ": cannot write the demo (" +
-                                         err.code().message() + "); nothing was written");
-  } catch (...) {
-    for (const auto& m : moved) {
-      std::error_code ec;
-      fs::remove(m, ec);
-    }
-    throw;
+    moved.push_back(to / f.filename());
   }
 }
 

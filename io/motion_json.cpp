@@ -209,25 +209,21 @@ std::optional<kernel::Provenance<double>> read_provenance(
   if (!tr) bad_method_field(f.source, "translation", "tr, trt or minimal");
   p.translation = *tr;
   if (me.contains("param")) p.param = name("param");
-  const json& rd = me["rotation_degree"];
-  if (!rd.is_number_integer() || rd.get<long long>() < 0 || rd.get<long long>() > 200)
-    bad_method_field(f.source, "rotation_degree", "an integer from 0 to 200");
-  p.rotation_degree = rd.get<int>();
-  const json& td = me["translation_degree"];
-  auto degree = [&](const json& j) {
+  // A recorded degree: an integer from 0 to 200, else the field is refused as `expected`.
+  auto degree = [&](const json& j, const char* field, const char* expected) {
     if (!j.is_number_integer() || j.get<long long>() < 0 || j.get<long long>() > 200)
-      bad_method_field(f.source, "translation_degree",
-                       p.translation == kernel::TranslationMethod::trt
-                           ? "[L1, L2], integers from 0 to 200"
-                           : "an integer from 0 to 200");
+      bad_method_field(f.source, field, expected);
     return j.get<int>();
   };
+  p.rotation_degree = degree(me["rotation_degree"], "rotation_degree", "an integer from 0 to 200");
+  const json& td = me["translation_degree"];
   if (p.translation == kernel::TranslationMethod::trt) {
-    if (!td.is_array() || td.size() != 2) degree(json());
-    p.translation_degree = degree(td[0]);
-    p.translation_degree2 = degree(td[1]);
+    const char* pair = "[L1, L2], integers from 0 to 200";
+    if (!td.is_array() || td.size() != 2) bad_method_field(f.source, "translation_degree", pair);
+    p.translation_degree = degree(td[0], "translation_degree", pair);
+    p.translation_degree2 = degree(td[1], "translation_degree", pair);
   } else {
-    p.translation_degree = degree(td);
+    p.translation_degree = degree(td, "translation_degree", "an integer from 0 to 200");
   }
   if (!me["parameters"].is_array()) bad_method_field(f.source, "parameters", "an array of numbers");
   for (std::size_t i = 0; i < me["parameters"].size(); ++i)
