@@ -138,10 +138,17 @@ std::string read_text_file(const std::string& path, std::uintmax_t max_bytes) {
   if (!ec && size > max_bytes)
     throw Error(Errc::invalid_input, path + ": a file of " + std::to_string(size) +
                                          " bytes (at most " + std::to_string(max_bytes) + ")");
-  std::ostringstream ss;
-  ss << in.rdbuf();
+  // Read in chunks up to the limit: a device or pipe (/dev/zero, a FIFO) has no size.
+  std::string text;
+  char chunk[1 << 16];
+  while (in.read(chunk, sizeof chunk) || in.gcount() > 0) {
+    text.append(chunk, static_cast<std::size_t>(in.gcount()));
+    if (text.size() > max_bytes)
+      throw Error(Errc::invalid_input,
+                  path + ": more than " + std::to_string(max_bytes) + " bytes (the limit)");
+  }
   if (in.bad()) throw Error(Errc::invalid_input, path + ": read error");
-  return ss.str();
+  return text;
 }
 
 json read_json_file(const std::string& path) { return parse_json(read_text_file(path), path); }

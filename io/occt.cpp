@@ -62,6 +62,7 @@
 #include <fstream>
 #include <limits>
 #include <qmotion/io/atomic_file.hpp>
+#include <qmotion/io/json_number.hpp>
 #include <qmotion/io/occt.hpp>
 #include <qmotion/io/units.hpp>
 #include <qmotion/kernel/error.hpp>
@@ -644,6 +645,9 @@ void refuse_failed_load(XSControl_Reader& reader, const std::string& path, const
 CadGeometry read_cad(const std::string& path, bool want_surface, const std::string& units) {
   if (!std::filesystem::is_regular_file(path))
     throw Error(Errc::invalid_input, path + ": cannot open file for reading");
+  if (const auto size = std::filesystem::file_size(path); size > kMaxFileBytes)
+    throw Error(Errc::invalid_input, path + ": a file of " + std::to_string(size) +
+                                         " bytes (at most " + std::to_string(kMaxFileBytes) + ")");
   quiet_occt();
   const std::string ext = extension(path);
   const UnitNames u = unit_names(units);
