@@ -83,6 +83,12 @@ std::optional<sweep::MotionFactors<Scalar>> read_factors(const MotionFile& f,
     return k;
   };
   auto rows = [&](const char* key, std::size_t width) {
+    // (const operator[] on a missing key is undefined: a TRT method without its second
+    // translation factor read freed memory, found by tests/fuzz.)
+    if (!me.contains(key))
+      throw Error(Errc::invalid_input, where + "." + key +
+                                           ": missing (expected an array of "
+                                           "control points)");
     const json& a = me[key];
     if (!a.is_array() || a.empty())
       throw Error(Errc::invalid_input, where + "." + key + ": expected an array of control points");
