@@ -47,9 +47,17 @@ kernel::Motion<Scalar> run(const std::vector<kernel::Pose<Scalar>>& poses,
   return kernel::interpolate_bspline(poses, t, sopt);
 }
 
-}  // namespace
+/// The options of `interpolate` checked and resolved against the poses, with the
+/// parameters of the rule in double.
+struct Resolved {
+  kernel::InterpolationOptions opt;
+  kernel::SplineOptions sopt;
+  kernel::Form form = kernel::Form::bezier;
+  kernel::ParamRule rule = kernel::ParamRule::uniform;
+  std::vector<double> t;
+};
 
-InterpolatedMotion interpolate(const PoseSet& set, const InterpolateOptions& args) {
+Resolved resolve(const PoseSet& set, const InterpolateOptions& args) {
   const std::size_t count = set.poses.size();
   kernel::InterpolationOptions opt;
   const auto rotation = kernel::rotation_method_from_string(args.rotation);
@@ -136,26 +144,51 @@ InterpolatedMotion interpolate(const PoseSet& set, const InterpolateOptions& arg
         Errc::invalid_input,
         set.source +
             ": --param given needs a t for every pose; the file has none (try --param uniform)");
-  const auto poses_d = to_poses_double(set);
-  const std::vector<double> t = kernel::parametrize(poses_d, *rule);
+  return Resolved{opt, sopt, *kernel::form_from_string(form), *rule,
+                  kernel::parametrize(to_poses_double(set), *rule)};
+}
 
-  const auto form_value = *kernel::form_from_string(form);
+#ifdef QMOTION_WITH_CGAL
+/// The exact motion: poses read exactly from their text, parameters exact for the given
+/// and uniform rules (the double rule's values, exactly, for the others).
+kernel::Motion<kernel::Rational> run_exact(const PoseSet& set, const Resolved& r) {
+  const auto poses_e = to_poses_exact(set);
+  const std::size_t count = poses_e.size();
+  std::vector<kernel::Rational> te;
+  for (std::size_t i = 0; i < count; ++i)
+    te.push_back(r.rule == kernel::ParamRule::given ? *poses_e[i].t : kernel::Rational(r.t[i]));
+  if (r.rule == kernel::ParamRule::uniform)
+    for (std::size_t i = 0; i < count; ++i)
+      te[i] =
+          kernel::Rational(static_cast<long>(i)) / kernel::Rational(static_cast<long>(count - 1));
+  auto m = run(poses_e, te, r.form, r.opt, r.sopt);
+  m.units = set.units;
+  m.provenance->param = kernel::to_string(r.rule);
+  return m;
+}
+#endif
+
+}  // namespace
+
+#ifdef QMOTION_WITH_CGAL
+kernel::Motion<kernel::Rational> interpolate_exact(const PoseSet& set, InterpolateOptions args) {
+  args.exact = true;
+  return run_exact(set, resolve(set, args));
+}
+#endif
+
+InterpolatedMotion interpolate(const PoseSet& set, const InterpolateOptions& args) {
+  const Resolved r = resolve(set, args);
+  const std::string rule = kernel::to_string(r.rule);
   if (args.exact) {
 #ifdef QMOTION_WITH_CGAL
-    const auto poses_e = to_poses_exact(set);
-    std::vector<kernel::Rational> te;
-    for (std::size_t i = 0; i < count; ++i)
-      te.push_back(*rule == kernel::ParamRule::given ? *poses_e[i].t : kernel::Rational(t[i]));
-    if (*rule == kernel::ParamRule::uniform)
-      for (std::size_t i = 0; i < count; ++i)
-        te[i] = kernel::Rational(static_cast<long>(i)) / kernel::Rational(static_cast<long>(m));
-    return finish(run(poses_e, te, form_value, opt, sopt), kernel::to_string(*rule), set);
+    return finish(run_exact(set, r), rule, set);
 #else
     throw Error(Errc::invalid_input,
                 "--exact: this build has no exact arithmetic (QMOTION_WITH_CGAL=OFF)");
 #endif
   }
-  return finish(run(poses_d, t, form_value, opt, sopt), kernel::to_string(*rule), set);
+  return finish(run(to_poses_double(set), r.t, r.form, r.opt, r.sopt), rule, set);
 }
 
 }  // namespace qmotion::io

@@ -38,4 +38,12 @@ struct InterpolatedMotion {
 /// refused systems. `result.motion` is what the sweep and export calls take.
 InterpolatedMotion interpolate(const PoseSet& poses, const InterpolateOptions& options);
 
+#ifdef QMOTION_WITH_CGAL
+/// The same motion in CGAL::Exact_rational (options.exact is implied): poses read exactly
+/// from their text (quaternion rotations only), parameters exact for the given and
+/// uniform rules. Units and the parametrisation name are recorded.
+kernel::Motion<kernel::Rational> interpolate_exact(const PoseSet& poses,
+                                                   InterpolateOptions options);
+#endif
+
 }  // namespace qmotion::io

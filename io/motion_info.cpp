@@ -114,7 +114,9 @@ json motion_info(const MotionFile& f, bool exact) {
 #ifdef QMOTION_WITH_CGAL
   if (exact)
     if (const auto poses = recorded_poses(f))
-      res = interpolation_residuals(to_motion_exact(f), to_poses_exact(*poses), f,
+      // Rotations given as matrices or axis and angle: the double unit quaternion, exactly.
+      res = interpolation_residuals(to_motion_exact(f),
+                                    to_poses_exact(with_quaternion_rotations(*poses)), f,
                                     kernel::Rational(0));
 #endif
   out["interpolation_residual"] = res;

@@ -313,6 +313,25 @@ std::vector<Pose<kernel::Rational>> to_poses_exact(const PoseSet& set) {
   }
   return out;
 }
+
+PoseSet with_quaternion_rotations(const PoseSet& set, std::vector<std::size_t>* replaced) {
+  PoseSet out = set;
+  const auto poses = to_poses_double(set);
+  auto exact_text = [](double v) {
+    std::ostringstream os;
+    os << kernel::Rational(v);  // "p/q" with q a power of two: the double's exact value
+    return Number{os.str(), v};
+  };
+  for (std::size_t i = 0; i < set.poses.size(); ++i) {
+    if (set.poses[i].rotation.kind == RotationInput::Kind::quaternion) continue;
+    const auto& q = poses[i].rotation;
+    out.poses[i].rotation =
+        RotationInput{RotationInput::Kind::quaternion,
+                      {exact_text(q.w()), exact_text(q.x()), exact_text(q.y()), exact_text(q.z())}};
+    if (replaced) replaced->push_back(i);
+  }
+  return out;
+}
 #endif
 
 json poses_to_json(const PoseSet& set) {

@@ -65,6 +65,11 @@ std::vector<Pose<double>> to_poses_double(const PoseSet& set);
 /// rotations have exact rational form in general: matrix and axis-angle rotations are
 /// refused (Errc::invalid_input naming the pose). Rotations keep the file's scale.
 std::vector<Pose<kernel::Rational>> to_poses_exact(const PoseSet& set);
+
+/// The poses with every matrix and axis-angle rotation replaced by the unit quaternion
+/// to_poses_double makes of it, written exactly ("p/q", q a power of two), so that exact
+/// mode reads the double pipeline's very numbers; `replaced` receives their indices.
+PoseSet with_quaternion_rotations(const PoseSet& set, std::vector<std::size_t>* replaced = nullptr);
 #endif
 
 /// The poses as JSON (SPEC §5), numbers written with their source text.

@@ -32,3 +32,6 @@
 #include <qmotion/sweep/solid.hpp>
 #include <qmotion/sweep/surface.hpp>
 #include <qmotion/sweep/trajectory.hpp>
+#ifdef QMOTION_WITH_CGAL
+#include <qmotion/io/exact_check.hpp>  // check --exact
+#endif

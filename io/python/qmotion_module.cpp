@@ -424,4 +424,19 @@ PYBIND11_MODULE(qmotion, m) {
       "The exactness check of `qmotion check`: the file's NURBS (STEP/IGES read through "
       "OpenCASCADE) against the motion applied to the profile or point. A dict with "
       "max_deviation, relative_deviation, weights_positive, valid, faces, closed, volume, ...");
+
+#ifdef QMOTION_WITH_CGAL
+  m.def(
+      "check_exact",
+      [](const std::string& motion_path, const py::object& point) {
+        std::optional<Eigen::Vector3d> x;
+        if (!point.is_none()) x = vec3(point, "point");
+        return to_python(qm::io::check_exact(motion_path, x));
+      },
+      py::arg("motion_path"), py::arg("point") = py::none(),
+      "`qmotion check --exact`: the motion file recomputed in exact rationals from the poses "
+      "it records; a dict with the exact Plucker and interpolation residuals (plucker, "
+      "interpolation), file_deviation, the trajectory order of point by an exact gcd beside "
+      "the degree trajectory writes (order), and verified.");
+#endif
 }

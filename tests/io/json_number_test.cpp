@@ -75,6 +75,9 @@ TEST(JsonNumber, FilesAboveTheSizeLimitAreRefused) {
                            {path, "102 bytes", "at most 50"}));
   EXPECT_EQ(io::read_text_file(path, 102).size(), 102u);
   EXPECT_GE(io::kMaxFileBytes, std::uintmax_t(256) << 20);  // a 10^5-pose motion file fits
+  // A device has no size to check first: reading stops at the limit (it used to read on).
+  EXPECT_TRUE(throws_error([&] { io::read_text_file("/dev/zero", 1 << 16); }, Errc::invalid_input,
+                           {"/dev/zero", "more than 65536 bytes"}));
 }
 
 TEST(JsonNumber, SyntaxErrorsGiveLineAndColumn) {

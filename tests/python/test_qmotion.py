@@ -143,6 +143,17 @@ def test_export_and_check_do_the_main_job(tmp_path):
             assert abs(k["volume"] - r["volume"]) <= 1e-6 * r["volume"]
 
 
+def test_check_exact_is_the_clis(tmp_path):
+    path = str(tmp_path / "m.json")
+    qmotion.interpolate(data("poses/five_positions.json")).save(path)
+    report = qmotion.check_exact(path, point=[1, 2, 3])
+    r = cli("check", "--exact", "--motion", path, "--point", "1,2,3")
+    assert r.returncode == 0, r.stderr
+    assert report == json.loads(r.stdout)
+    assert report["verified"] and report["plucker"]["exact_zero"]
+    assert report["order"]["gcd"] == report["order"]["trajectory_degree"]
+
+
 def cli_message(args):
     r = cli(*args)
     assert r.returncode in (2, 3), r.stderr
