@@ -2,7 +2,8 @@
 # Installs qmotion's build and test dependencies from Debian's packages.
 # Usage: scripts/install-deps.sh [--test]
 #   --test  also installs what the test suite needs (GoogleTest, Google Benchmark,
-#           clang-format, pytest for the Python module, and FreeCAD for the interop test).
+#           clang-format, pytest for the Python module, FreeCAD for the interop test, and
+#           clang with libclang-rt-14-dev for scripts/test-sanitized.sh: sanitizers, libFuzzer).
 set -euo pipefail
 
 packages=(
@@ -14,7 +15,8 @@ packages=(
   python3 python3-dev python3-numpy pybind11-dev
 )
 if [[ "${1:-}" == "--test" ]]; then
-  packages+=(googletest libgtest-dev libgmock-dev libbenchmark-dev clang-format git python3 python3-pytest freecad-python3)
+  packages+=(googletest libgtest-dev libgmock-dev libbenchmark-dev clang-format git python3 python3-pytest freecad-python3
+    clang libclang-rt-14-dev)
 fi
 
 missing=()

@@ -1,17 +1,23 @@
 #!/usr/bin/env bash
-# Builds qmotion and its unit tests with AddressSanitizer and UndefinedBehaviorSanitizer in
-# ./build-sanitized and runs them (the tests of qmotion's own code: kernel, sweep, io, CLI).
+# Builds qmotion, its tests and its fuzz targets with clang, AddressSanitizer and
+# UndefinedBehaviorSanitizer in ./build-sanitized, then runs the tests of qmotion's own
+# code (kernel, sweep, io, CLI) and the fuzz targets (label fuzz: each fuzzes for
+# QMOTION_FUZZ_SECONDS, default 30, and replays its past findings).
 # Not run here: the Python module and FreeCAD (an instrumented library cannot be loaded into
 # an uninstrumented interpreter), the installed-package example and the format check.
-# Warnings are not errors here: GCC 12 reports false maybe-uninitialized warnings in
-# std::regex and std::function under the sanitizers (the Release build keeps -Werror).
+# Extra arguments go to the CMake configure step (e.g. -DQMOTION_FUZZ_SECONDS=300).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 launcher=()
 if command -v ccache >/dev/null 2>&1; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
-cmake -S . -B build-sanitized -DCMAKE_BUILD_TYPE=RelWithDebInfo -DQMOTION_SANITIZE=ON \
-  -DQMOTION_BUILD_PYTHON=OFF -DQMOTION_BUILD_BENCHMARKS=OFF -DQMOTION_WARNINGS_AS_ERRORS=OFF \
-  "${launcher[@]}" "$@"
+# A tree configured with another compiler (GCC, before the fuzz targets) starts afresh.
+if [[ -f build-sanitized/CMakeCache.txt ]] &&
+  ! grep -q '^CMAKE_CXX_COMPILER:.*clang' build-sanitized/CMakeCache.txt; then
+  rm -rf build-sanitized
+fi
+cmake -S . -B build-sanitized -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DQMOTION_SANITIZE=ON -DQMOTION_FUZZ=ON -DQMOTION_BUILD_PYTHON=OFF \
+  -DQMOTION_BUILD_BENCHMARKS=OFF -DQMOTION_WARNINGS_AS_ERRORS=ON "${launcher[@]}" "$@"
 cmake --build build-sanitized -j "$(nproc)"
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
 export LSAN_OPTIONS=suppressions=$PWD/tests/sanitizer/lsan.supp:print_suppressions=0

@@ -1,0 +1,48 @@
+// io/cli/run.cpp: the qmotion command line. Each command lives in its own file
+// (io/cli/<command>.cpp); run() wires them up (main.cpp maps errors to exit statuses).
+#include <CLI/CLI.hpp>
+#include <exception>
+#include <iostream>
+#include <qmotion/io/cli/command.hpp>
+#include <qmotion/io/occt_info.hpp>
+#include <qmotion/kernel/error.hpp>
+#include <vector>
+
+namespace qmotion::cli {
+
+int run(int argc, char** argv) {
+  CLI::App app{"qmotion: rational motions from rigid-body poses, exported as exact NURBS",
+               "qmotion"};
+  app.require_subcommand(0, 1);
+  bool version = false;
+  app.add_flag("--version", version, "Print the version and the OpenCASCADE version, then exit");
+  app.footer(
+      "Exit status: 0 success, 2 bad input or usage, 3 numerical failure, 1 internal error.\n"
+      "Conventions: quaternions (w,x,y,z); pose P = (2 + eps s) * r; millimetres unless the file "
+      "says otherwise.\n");
+
+  const std::vector<Command> commands = {add_info(app),  add_eval(app),       add_interpolate(app),
+                                         add_poses(app), add_trajectory(app), add_sweep(app),
+                                         add_check(app), add_demo(app)};
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp&) {
+    std::cout << app.help();
+    return 0;
+  } catch (const CLI::CallForAllHelp&) {
+    std::cout << app.help("", CLI::AppFormatMode::All);
+    return 0;
+  } catch (const CLI::ParseError& e) {
+    throw Error(Errc::invalid_input, std::string(e.what()) + " (see qmotion --help)");
+  }
+  if (version) {
+    std::cout << "qmotion 0.1.0 (OpenCASCADE " << io::occt_version() << ")\n";
+    return 0;
+  }
+  for (const auto& c : commands)
+    if (*c.app) return c.run();
+  std::cout << app.help();
+  return 2;
+}
+
+}  // namespace qmotion::cli
