@@ -1,19 +1,24 @@
 // kernel/qspline.hpp: the non-rational mode (SPEC §3): unit-quaternion interpolation splines
 // in cumulative form, with the matching R³ spline for the positions.
 //   quartic: Xing, Fan, Tan, Xu 2017 (seed 003), (1)-(4), uniform knots;
-//   quintic: Tan et al. (seed 002), (3.1)-(3.7), a tension per key and arbitrary knots.
-// Both are explicit. Segment s of n keys (s = 0, ..., n-2) runs from key s to key s+1 with
-// local parameter t in [0, 1] and reads the keys E_{s-1}, E_s, E_{s+1}, E_{s+2}, where the
-// ends repeat (E_{-1} = E_0, E_n = E_{n-1}, as both papers define them):
+//   quintic: Tan et al. (seed 002), (3.1)-(3.7), a tension per key and arbitrary knots;
+//   kks: Kim, Kim, Shin (seed 000), the cumulative cubic B-spline quaternion curve whose
+//        control quaternions solve (11) by the iteration (12)-(13), natural ends.
+// Segment s of n keys (s = 0, ..., n-2) runs from key s to key s+1 with local parameter t
+// in [0, 1] and reads the control quaternions E_{s-1}, E_s, E_{s+1}, E_{s+2}. For the quartic
+// and the quintic they are the keys with the ends repeated (E_{-1} = E_0, E_n = E_{n-1}, as
+// both papers define them); for KKS the B-spline's control quaternions q_{-1}, ..., q_n:
 //   q_s(t) = E_{s-1} exp(C~_1(t) w_{s-1}) exp(C~_2(t) w_s) exp(C~_3(t) w_{s+1}),
 //   w_k = log(E_k^{-1} E_{k+1}),  C~_j = sum_{k>=j} C_k,
 //   p_s(t) = sum_k C_k(t) P_{s-1+k},
 // with C_k the scheme's blending functions; C~_0 = 1 for both schemes.
 #pragma once
 #include <Eigen/Core>
+#include <Eigen/LU>
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <qmotion/kernel/error.hpp>
 #include <qmotion/kernel/quaternion.hpp>
 #include <string>
@@ -47,7 +52,17 @@ struct QuaternionSpline {
   std::vector<Quaternion<double>> keys;    ///< unit keys, signs aligned (E_k . E_k+1 > 0)
   std::vector<Eigen::Vector3d> positions;  ///< one per key
   std::vector<double> tension;             ///< quintic: alpha per key
-  std::vector<Quaternion<double>> omega;   ///< w_k = log(E_k^-1 E_k+1), k = -1 .. n-1
+  std::vector<Quaternion<double>> ctrl;    ///< E_{-1} .. E_n (n keys): ctrl[k + 1] = E_k
+  std::vector<Eigen::Vector3d> pctrl;      ///< the position spline's P_{-1} .. P_n
+  std::vector<Quaternion<double>> omega;   ///< omega[k] = log(ctrl[k]^-1 ctrl[k+1])
+  /// KKS: fixed-point iterations, the last observed contraction ratio, and the largest
+  /// interpolation residual |log(Q_i^-1 q(u_i))| after them and after the Gauss-Newton
+  /// refinement (with its step count).
+  int iterations = 0;
+  double contraction = 0;
+  double fixed_point_residual = 0;
+  int newton_steps = 0;
+  double residual = 0;
 
   double a() const { return knots.front(); }
   double b() const { return knots.back(); }
@@ -71,6 +86,11 @@ struct QuaternionSpline {
 
   /// The four blending functions C_0..C_3 of segment s at local parameter t.
   std::array<double, 4> blend(int s, double t) const {
+    const double t2 = t * t, t3 = t2 * t;
+    if (scheme == QSplineScheme::kks) {  // the uniform cubic B-spline basis
+      const double u = 1 - t;
+      return {u * u * u / 6, (3 * t3 - 6 * t2 + 4) / 6, (-3 * t3 + 3 * t2 + 3 * t + 1) / 6, t3 / 6};
+    }
     if (scheme == QSplineScheme::quintic) {
       const double al = tension[static_cast<std::size_t>(s)];
       const double be = tension[static_cast<std::size_t>(s + 1)];
@@ -90,7 +110,7 @@ struct QuaternionSpline {
       return c;
     }
     // (4) of seed 003.
-    const double t2 = t * t, t3 = t2 * t, t4 = t3 * t;
+    const double t4 = t3 * t;
     return {0.5 * t4 - 1.5 * t3 + 1.5 * t2 - 0.5 * t, -0.5 * t4 + 2.5 * t3 - 3 * t2 + 1,
             -0.5 * t4 - 0.5 * t3 + 1.5 * t2 + 0.5 * t, 0.5 * t4 - 0.5 * t3};
   }
@@ -98,14 +118,15 @@ struct QuaternionSpline {
   /// The unit rotation at u.
   Quaternion<double> rotation(double u) const {
     const auto [s, t] = locate(u);
+    return rotation_in(s, t);
+  }
+  /// The unit rotation at local parameter t of segment s.
+  Quaternion<double> rotation_in(int s, double t) const {
     const auto c = blend(s, t);
     const double c3 = c[3], c2 = c[2] + c3, c1 = c[1] + c2;  // cumulative C~_j
-    const auto& w = omega;                                   // w[k + 1] is w_k
-    Quaternion<double> q = key(s - 1);
-    q = q * exp_pure(w[static_cast<std::size_t>(s)] * c1);
-    q = q * exp_pure(w[static_cast<std::size_t>(s + 1)] * c2);
-    q = q * exp_pure(w[static_cast<std::size_t>(s + 2)] * c3);
-    return q;
+    const auto k = static_cast<std::size_t>(s);
+    return ctrl[k] * exp_pure(omega[k] * c1) * exp_pure(omega[k + 1] * c2) *
+           exp_pure(omega[k + 2] * c3);
   }
 
   /// The position (image of the moving origin) at u.
@@ -113,25 +134,16 @@ struct QuaternionSpline {
     const auto [s, t] = locate(u);
     const auto c = blend(s, t);
     Eigen::Vector3d p = Eigen::Vector3d::Zero();
-    for (int j = 0; j < 4; ++j) p += c[static_cast<std::size_t>(j)] * point(s - 1 + j);
+    for (int j = 0; j < 4; ++j)
+      p += c[static_cast<std::size_t>(j)] * pctrl[static_cast<std::size_t>(s + j)];
     return p;
-  }
-
-  /// Key k with the ends repeated (k = -1 .. n).
-  const Quaternion<double>& key(int k) const {
-    const int n = static_cast<int>(keys.size());
-    return keys[static_cast<std::size_t>(std::min(n - 1, std::max(0, k)))];
-  }
-  const Eigen::Vector3d& point(int k) const {
-    const int n = static_cast<int>(positions.size());
-    return positions[static_cast<std::size_t>(std::min(n - 1, std::max(0, k)))];
   }
 };
 
 namespace detail {
 
 /// Checks and prepares keys: unit, signs aligned along the sequence, no half-turn between
-/// neighbours; the logarithms w_k with the ends repeated.
+/// neighbours.
 inline void prepare_keys(QuaternionSpline& s) {
   const std::size_t n = s.keys.size();
   if (n < 2 || s.positions.size() != n || s.knots.size() != n)
@@ -154,10 +166,31 @@ inline void prepare_keys(QuaternionSpline& s) {
                       "the spline cannot choose which way to turn (insert a key between them)");
     if (d < 0) s.keys[i] = -s.keys[i];
   }
-  s.omega.clear();
-  for (int k = -1; k < static_cast<int>(n); ++k)
-    s.omega.push_back(log_unit(inverse(s.key(k)) * s.key(k + 1)));
 }
+
+/// The logarithms omega of consecutive control quaternions.
+inline void finish(QuaternionSpline& s) {
+  s.omega.clear();
+  s.omega.reserve(s.ctrl.size());
+  for (std::size_t k = 0; k + 1 < s.ctrl.size(); ++k)
+    s.omega.push_back(log_unit(inverse(s.ctrl[k]) * s.ctrl[k + 1]));
+}
+
+/// Control quaternions and points for the schemes that repeat the end keys.
+inline void repeat_ends(QuaternionSpline& s) {
+  s.ctrl.reserve(s.keys.size() + 2);
+  s.ctrl.assign(1, s.keys.front());
+  s.ctrl.insert(s.ctrl.end(), s.keys.begin(), s.keys.end());
+  s.ctrl.push_back(s.keys.back());
+  s.pctrl.reserve(s.positions.size() + 2);
+  s.pctrl.assign(1, s.positions.front());
+  s.pctrl.insert(s.pctrl.end(), s.positions.begin(), s.positions.end());
+  s.pctrl.push_back(s.positions.back());
+  finish(s);
+}
+
+/// q with w >= 0 (the same rotation; its powers take the shorter arc).
+inline Quaternion<double> short_arc(const Quaternion<double>& q) { return q.w() < 0 ? -q : q; }
 
 }  // namespace detail
 
@@ -175,6 +208,7 @@ inline QuaternionSpline quartic_spline(std::vector<Quaternion<double>> keys,
                             : a);
   if (n > 1) s.knots.back() = b;
   detail::prepare_keys(s);
+  detail::repeat_ends(s);
   return s;
 }
 
@@ -198,6 +232,210 @@ inline QuaternionSpline quintic_spline(std::vector<Quaternion<double>> keys,
       throw Error(Errc::invalid_input, "quintic: tension " + std::to_string(i) + " is not finite");
   s.tension = std::move(tension);
   detail::prepare_keys(s);
+  detail::repeat_ends(s);
+  return s;
+}
+
+/// Options of the Kim-Kim-Shin solve.
+struct KksOptions {
+  double tol = 1e-4;  ///< the fixed-point iteration stops when no key moves further
+  int max_iterations = 1000;
+  bool refine = true;  ///< Gauss-Newton on (11) after the fixed-point iteration
+  double refine_tol = 1e-14;
+  int max_refine_steps = 20;
+};
+
+namespace detail {
+
+/// KKS control quaternions q_{-1} .. q_n of n keys from the interior ones q_0 .. q_{n-1}:
+/// the natural ends q_{-1} = q_0 (q_0^-1 q_1)^-1, q_n = q_{n-1} (q_{n-2}^-1 q_{n-1}).
+inline std::vector<Quaternion<double>> kks_with_ends(const std::vector<Quaternion<double>>& q) {
+  const std::size_t n = q.size();
+  std::vector<Quaternion<double>> c;
+  c.reserve(n + 2);
+  c.push_back(q[0] * inverse(inverse(q[0]) * q[1]));
+  c.insert(c.end(), q.begin(), q.end());
+  c.push_back(q[n - 1] * (inverse(q[n - 2]) * q[n - 1]));
+  return c;
+}
+
+/// The KKS curve at key i (local t = 0 of segment i): q_{i-1} (q_{i-1}^-1 q_i)^{5/6}
+/// (q_i^-1 q_{i+1})^{1/6}, from the control quaternions with ends c (c[k + 1] = q_k).
+inline Quaternion<double> kks_at_key(const std::vector<Quaternion<double>>& c, std::size_t i) {
+  const auto& a = c[i];
+  const auto& b = c[i + 1];
+  const auto& d = c[i + 2];
+  return a * pow_unit(inverse(a) * b, 5.0 / 6) * pow_unit(inverse(b) * d, 1.0 / 6);
+}
+
+/// |log(Q^-1 q)|: the half-angle between two rotations (sign-free).
+inline double rotation_distance(const Quaternion<double>& Q, const Quaternion<double>& q) {
+  return log_unit(short_arc(inverse(Q) * q)).vec().norm();
+}
+
+}  // namespace detail
+
+/// Kim, Kim and Shin's C² B-spline quaternion curve through the keys (seed 000): the
+/// cumulative-form uniform cubic B-spline whose control quaternions solve (11) with natural
+/// ends, by the fixed-point iteration (13) until no control quaternion moves more than
+/// options.tol (the map F of the paper: every q_i from the previous iterate), then
+/// (options.refine) Gauss-Newton on (11) to options.refine_tol. Keys at
+/// uniform knots mapped linearly onto [a, b]. Positions: the interpolating uniform cubic
+/// B-spline with natural ends. Throws Errc::numerical_failure, naming the largest key
+/// distance, when the iteration does not converge or converges to control quaternions that
+/// miss a key by more than 1e-10 rad (10 x options.tol without refinement). The paper's
+/// bound is 1.4 rad at an axis difference of pi/2; tests/bench/kks_convergence measures
+/// convergence up to the half-turn limit there, and failure once the axis nearly reverses
+/// between keys.
+inline QuaternionSpline kks_spline(std::vector<Quaternion<double>> keys,
+                                   std::vector<Eigen::Vector3d> positions, double a, double b,
+                                   const KksOptions& options = {}) {
+  QuaternionSpline s;
+  s.scheme = QSplineScheme::kks;
+  s.keys = std::move(keys);
+  s.positions = std::move(positions);
+  const std::size_t n = s.keys.size();
+  for (std::size_t i = 0; i < n; ++i)
+    s.knots.push_back(n > 1 ? a + (b - a) * static_cast<double>(i) / static_cast<double>(n - 1)
+                            : a);
+  if (n > 1) s.knots.back() = b;
+  detail::prepare_keys(s);
+  const auto& Q = s.keys;
+
+  double theta = 0;  // the largest key distance |log(Q_{i-1}^-1 Q_i)|
+  for (std::size_t i = 1; i < n; ++i)
+    theta = std::max(theta, detail::rotation_distance(Q[i - 1], Q[i]));
+  auto diverged = [&](const std::string& how) {
+    return Error(Errc::numerical_failure,
+                 "kks: the iteration for the control quaternions " + how +
+                     "; the largest key distance |log(Q_i-1^-1 Q_i)| is " + std::to_string(theta) +
+                     " rad (Kim, Kim and Shin converge below about 1.4 rad; insert keys between "
+                     "distant ones, or use --scheme quintic or quartic, which need no iteration)");
+  };
+
+  // Fixed-point iteration (13), all q_i from the previous iterate; q_0, q_{n-1} are the keys.
+  std::vector<Quaternion<double>> q = Q;
+  double last = 0, best = std::numeric_limits<double>::infinity();
+  int best_at = 0;  // a contraction improves; 100 steps without a new best is a cycle
+  for (int it = 1; n > 2; ++it) {
+    std::vector<Quaternion<double>> next = q;
+    double moved = 0;
+    for (std::size_t i = 1; i + 1 < n; ++i) {
+      const auto inner = inverse(q[i - 1]) * Q[i] * pow_unit(inverse(q[i]) * q[i + 1], -1.0 / 6);
+      next[i] = q[i - 1] * pow_unit(inner, 6.0 / 5);
+      if (next[i].dot(q[i]) < 0) next[i] = -next[i];
+      moved = std::max(moved, detail::rotation_distance(q[i], next[i]));
+    }
+    q = std::move(next);
+    s.iterations = it;
+    if (!std::isfinite(moved)) throw diverged("produced non-numbers");
+    if (last > 0) s.contraction = moved / last;
+    last = moved;
+    if (moved < options.tol) break;
+    if (moved < best) {
+      best = moved;
+      best_at = it;
+    }
+    if (it >= options.max_iterations || moved > 10 || it - best_at > 100)
+      throw diverged("did not converge in " + std::to_string(it) + " iterations (last step " +
+                     std::to_string(moved) + " rad)");
+  }
+  auto residual = [&](const std::vector<Quaternion<double>>& x) {
+    const auto c = detail::kks_with_ends(x);
+    double r = 0;
+    for (std::size_t i = 0; i < n; ++i)
+      r = std::max(r, detail::rotation_distance(Q[i], detail::kks_at_key(c, i)));
+    return r;
+  };
+  s.fixed_point_residual = residual(q);
+
+  // Gauss-Newton on the interior equations r_i = log(Q_i^-1 q(i)) = 0, i = 1..n-2, in the
+  // unknowns q_i exp(d_i): block tridiagonal (r_i reads q_{i-1}, q_i, q_{i+1}; the natural
+  // ends make q(0) = q_0 and q(n-1) = q_{n-1} hold identically), forward-difference blocks.
+  if (options.refine && n > 2) {
+    using M3 = Eigen::Matrix3d;
+    const std::size_t m = n - 2;  // unknowns d_1 .. d_{n-2}
+    auto r_at = [&](const std::vector<Quaternion<double>>& x, std::size_t i) {
+      const auto& a0 = x[i - 1];
+      const auto& b0 = x[i];
+      const auto at =
+          a0 * pow_unit(inverse(a0) * b0, 5.0 / 6) * pow_unit(inverse(b0) * x[i + 1], 1.0 / 6);
+      return Eigen::Vector3d(log_unit(detail::short_arc(inverse(Q[i]) * at)).vec());
+    };
+    for (int step = 0; step < options.max_refine_steps; ++step) {
+      std::vector<Eigen::Vector3d> r(m);
+      double rmax = 0;
+      for (std::size_t j = 0; j < m; ++j) {
+        r[j] = r_at(q, j + 1);
+        rmax = std::max(rmax, r[j].norm());
+      }
+      if (rmax <= options.refine_tol) break;
+      std::vector<M3> L(m, M3::Zero()), D(m, M3::Zero()), U(m, M3::Zero());
+      const double h = 1e-7;
+      for (std::size_t j = 0; j < m; ++j)
+        for (int k = 0; k < 3; ++k) {
+          const Quaternion<double> saved = q[j + 1];
+          Eigen::Vector3d e = Eigen::Vector3d::Zero();
+          e(k) = h;
+          q[j + 1] = saved * exp_pure(Quaternion<double>::pure(e));
+          for (std::size_t row = (j == 0 ? 0 : j - 1); row <= std::min(m - 1, j + 1); ++row) {
+            const Eigen::Vector3d col = (r_at(q, row + 1) - r[row]) / h;
+            if (row + 1 == j) U[row].col(k) = col;
+            if (row == j) D[row].col(k) = col;
+            if (row == j + 1) L[row].col(k) = col;
+          }
+          q[j + 1] = saved;
+        }
+      // Block Thomas: J d = -r.
+      std::vector<M3> Dp(m);
+      std::vector<Eigen::Vector3d> rp(m), d(m);
+      Dp[0] = D[0];
+      rp[0] = -r[0];
+      for (std::size_t j = 1; j < m; ++j) {
+        const M3 f = L[j] * Dp[j - 1].inverse();
+        Dp[j] = D[j] - f * U[j - 1];
+        rp[j] = -r[j] - f * rp[j - 1];
+      }
+      d[m - 1] = Dp[m - 1].inverse() * rp[m - 1];
+      for (std::size_t j = m - 1; j-- > 0;) d[j] = Dp[j].inverse() * (rp[j] - U[j] * d[j + 1]);
+      for (std::size_t j = 0; j < m; ++j) {
+        if (!d[j].allFinite()) throw diverged("refinement met a singular Jacobian");
+        q[j + 1] = normalized(q[j + 1] * exp_pure(Quaternion<double>::pure(d[j])));
+      }
+      s.newton_steps = step + 1;
+    }
+  }
+  s.residual = residual(q);
+  // A fixed point far from (11) (seen with axes turning by more than pi/2 between keys)
+  // or a refinement that did not reach its goal is no interpolation.
+  const double accept = options.refine ? 1e-10 : 10 * options.tol;
+  if (!(s.residual <= accept))
+    throw diverged("stopped at control quaternions that miss a key by " +
+                   std::to_string(s.residual) + " rad");
+  s.ctrl = detail::kks_with_ends(q);
+  detail::finish(s);
+
+  // Positions: p_{i-1} + 4 p_i + p_{i+1} = 6 P_i inside, p_0 = P_0, p_{n-1} = P_{n-1}
+  // (natural ends), by the tridiagonal (Thomas) solve; then p_{-1}, p_n.
+  std::vector<Eigen::Vector3d> p = s.positions;
+  if (n > 2) {
+    const std::size_t m = n - 2;
+    std::vector<double> cp(m);
+    std::vector<Eigen::Vector3d> dp(m);
+    for (std::size_t j = 0; j < m; ++j) {
+      Eigen::Vector3d rhs = 6 * s.positions[j + 1];
+      if (j == 0) rhs -= s.positions[0];
+      if (j + 1 == m) rhs -= s.positions[n - 1];
+      const double denom = 4 - (j ? cp[j - 1] : 0.0);
+      cp[j] = 1 / denom;
+      dp[j] = (rhs - (j ? dp[j - 1] : Eigen::Vector3d::Zero().eval())) / denom;
+    }
+    for (std::size_t j = m; j-- > 0;)
+      p[j + 1] = dp[j] - (j + 1 < m ? cp[j] * p[j + 2] : Eigen::Vector3d::Zero().eval());
+  }
+  s.pctrl.assign(1, 2 * p[0] - p[1]);
+  s.pctrl.insert(s.pctrl.end(), p.begin(), p.end());
+  s.pctrl.push_back(2 * p[n - 1] - p[n - 2]);
   return s;
 }
 

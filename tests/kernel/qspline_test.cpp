@@ -59,7 +59,8 @@ TEST(QSpline, EverySchemePassesThroughItsKeysOnTheUnitSphere) {
     const Keys k = random_keys(seed, 7);
     const std::vector<double> knots = {0, 0.5, 2, 2.2, 3, 4.5, 5};
     for (const QuaternionSpline& s :
-         {kernel::quartic_spline(k.q, k.p, 0, 5), quintic(k, knots), quintic(k, uniform(7), 1.3)}) {
+         {kernel::quartic_spline(k.q, k.p, 0, 5), quintic(k, knots), quintic(k, uniform(7), 1.3),
+          kernel::kks_spline(k.q, k.p, 0, 5)}) {
       SCOPED_TRACE(std::string(kernel::to_string(s.scheme)) + " seed " + std::to_string(seed));
       for (std::size_t i = 0; i < k.q.size(); ++i) {
         const Quaternion<double> q = s.rotation(s.knots[i]);
@@ -79,8 +80,8 @@ TEST(QSpline, EverySchemePassesThroughItsKeysOnTheUnitSphere) {
 // 003; section 3.2 of seed 002), for rotations and positions alike.
 TEST(QSpline, UniformKnotsGiveC2AtEveryInteriorKey) {
   const Keys k = random_keys(7, 6);
-  for (const QuaternionSpline& s :
-       {kernel::quartic_spline(k.q, k.p, 0, 5), quintic(k, uniform(6))}) {
+  for (const QuaternionSpline& s : {kernel::quartic_spline(k.q, k.p, 0, 5), quintic(k, uniform(6)),
+                                    kernel::kks_spline(k.q, k.p, 0, 5)}) {
     SCOPED_TRACE(kernel::to_string(s.scheme));
     const auto rot = [&](double u) { return vec(s.rotation(u)); };
     const auto pos = [&](double u) {
@@ -134,6 +135,77 @@ TEST(QSpline, QuinticTensionIsLocal) {
     } else {
       EXPECT_EQ(d, 0.0) << "u = " << x;
     }
+  }
+}
+
+// Kim-Kim-Shin: the fixed-point iteration (13) reaches the paper's 1e-4, Gauss-Newton then
+// solves (11) to rounding; the natural ends make the curve's second derivative vanish there.
+TEST(QSpline, KksIteratesThenRefinesToRounding) {
+  const Keys k = random_keys(5, 10);
+  kernel::KksOptions plain;
+  plain.refine = false;
+  const QuaternionSpline fp = kernel::kks_spline(k.q, k.p, 0, 9, plain);
+  const QuaternionSpline gn = kernel::kks_spline(k.q, k.p, 0, 9);
+  EXPECT_GT(fp.iterations, 2);
+  EXPECT_LT(fp.contraction, 1.0);
+  EXPECT_GT(fp.residual, 1e-9);  // the fixed point alone stops near its 1e-4 step
+  EXPECT_LE(fp.residual, 1e-3);
+  EXPECT_EQ(gn.iterations, fp.iterations);
+  EXPECT_GE(gn.newton_steps, 1);
+  EXPECT_LE(gn.residual, 1e-12);
+  for (int i = 0; i < 10; ++i) {
+    const auto q = gn.rotation(i);
+    EXPECT_LE(std::min((vec(q) - vec(k.q[i])).norm(), (vec(q) + vec(k.q[i])).norm()), 1e-12);
+  }
+  // Natural ends: the angular acceleration vanishes at both ends (the body angular velocity
+  // 2 log(q(u)^-1 q(u + e)) / e has zero derivative there); the quartic, whose ends repeat
+  // the keys instead, has none of that.
+  const auto omega = [](const QuaternionSpline& s, double dir) {
+    return [&s, dir](double x) {
+      const double e = 1e-7;
+      const V3 w = 2 * kernel::log_unit(s.rotation(x).conj() * s.rotation(x + dir * e)).vec() / e;
+      return V4(0, w(0), w(1), w(2));
+    };
+  };
+  const QuaternionSpline quartic = kernel::quartic_spline(k.q, k.p, 0, 9);
+  for (const double end : {0.0, 9.0}) {
+    const double dir = end == 0 ? 1 : -1;
+    const V4 acc = one_sided(omega(gn, dir), end, dir, 1e-3).first;
+    const V4 quartic_acc = one_sided(omega(quartic, dir), end, dir, 1e-3).first;
+    EXPECT_LE(acc.norm(), 1e-4 * (1 + omega(gn, dir)(end).norm())) << "u = " << end;
+    EXPECT_GT(quartic_acc.norm(), 1e-2) << "u = " << end;
+  }
+}
+
+// Beyond the paper's bound the iteration fails and says why (exit 3 in the CLI).
+TEST(QSpline, KksRefusesKeysTooFarApart) {
+  // Key distance 1.5 rad (half-angle; a 172 degree turn) with the axis turning by pi/2.
+  std::vector<Quaternion<double>> q{Quaternion<double>(1, 0, 0, 0)};
+  const V3 axes[] = {V3(1, 0, 0), V3(0, 1, 0), V3(0, 0, 1)};
+  for (int i = 1; i < 10; ++i) q.push_back(q.back() * kernel::from_axis_angle(axes[i % 3], 3.0));
+  std::vector<V3> p(10, V3::Zero());
+  try {
+    (void)kernel::kks_spline(q, p, 0, 1);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), Errc::numerical_failure);
+    EXPECT_NE(std::string(e.what()).find("largest key distance"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("1.5"), std::string::npos) << e.what();
+  }
+  // Key distance 1 rad with the axis nearly reversing at every key (3 rad between axes):
+  // the map cycles instead of contracting, and is stopped after 100 steps without progress.
+  std::vector<Quaternion<double>> r{Quaternion<double>(1, 0, 0, 0)};
+  V3 axis(1, 0, 0);
+  for (int i = 1; i < 10; ++i) {
+    r.push_back(r.back() * kernel::from_axis_angle(axis, 2.0));
+    axis = V3(std::cos(3.0 * i), std::sin(3.0 * i), 0);
+  }
+  try {
+    (void)kernel::kks_spline(r, p, 0, 1);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), Errc::numerical_failure);
+    EXPECT_NE(std::string(e.what()).find("did not converge"), std::string::npos) << e.what();
   }
 }
 
