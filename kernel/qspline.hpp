@@ -84,6 +84,19 @@ struct QuaternionSpline {
     return {s, g - s};
   }
 
+  /// Quintic segment s: its Bezier points V_0..V_5 of (3.3), solved from (3.4), as weights
+  /// of E_{s-1}, ..., E_{s+2}.
+  std::array<std::array<double, 4>, 6> quintic_points(int s) const {
+    const double al = tension[static_cast<std::size_t>(s)];
+    const double be = tension[static_cast<std::size_t>(s + 1)];
+    return {{{0, 1, 0, 0},
+             {-al / 5, 1, al / 5, 0},
+             {-7 * al / 20, 1 - al / 10, 9 * al / 20, 0},
+             {0, 9 * be / 20, 1 - be / 10, -7 * be / 20},
+             {0, be / 5, 1, -be / 5},
+             {0, 0, 1, 0}}};
+  }
+
   /// The four blending functions C_0..C_3 of segment s at local parameter t.
   std::array<double, 4> blend(int s, double t) const {
     const double t2 = t * t, t3 = t2 * t;
@@ -92,27 +105,71 @@ struct QuaternionSpline {
       return {u * u * u / 6, (3 * t3 - 6 * t2 + 4) / 6, (-3 * t3 + 3 * t2 + 3 * t + 1) / 6, t3 / 6};
     }
     if (scheme == QSplineScheme::quintic) {
-      const double al = tension[static_cast<std::size_t>(s)];
-      const double be = tension[static_cast<std::size_t>(s + 1)];
-      // Bezier points V_0..V_5 of (3.3) solved from (3.4), as weights of E_{s-1..s+2}.
-      const double V[6][4] = {{0, 1, 0, 0},
-                              {-al / 5, 1, al / 5, 0},
-                              {-7 * al / 20, 1 - al / 10, 9 * al / 20, 0},
-                              {0, 9 * be / 20, 1 - be / 10, -7 * be / 20},
-                              {0, be / 5, 1, -be / 5},
-                              {0, 0, 1, 0}};
+      const auto V = quintic_points(s);
       const double u = 1 - t;
       const double B[6] = {u * u * u * u * u,      5 * t * u * u * u * u, 10 * t * t * u * u * u,
                            10 * t * t * t * u * u, 5 * t * t * t * t * u, t * t * t * t * t};
       std::array<double, 4> c{0, 0, 0, 0};
       for (int k = 0; k < 6; ++k)
-        for (int j = 0; j < 4; ++j) c[static_cast<std::size_t>(j)] += B[k] * V[k][j];
+        for (int j = 0; j < 4; ++j)
+          c[static_cast<std::size_t>(j)] +=
+              B[k] * V[static_cast<std::size_t>(k)][static_cast<std::size_t>(j)];
       return c;
     }
     // (4) of seed 003.
     const double t4 = t3 * t;
     return {0.5 * t4 - 1.5 * t3 + 1.5 * t2 - 0.5 * t, -0.5 * t4 + 2.5 * t3 - 3 * t2 + 1,
             -0.5 * t4 - 0.5 * t3 + 1.5 * t2 + 0.5 * t, 0.5 * t4 - 0.5 * t3};
+  }
+
+  /// d/dt of the four blending functions of segment s at local parameter t.
+  std::array<double, 4> blend_derivative(int s, double t) const {
+    const double t2 = t * t, t3 = t2 * t;
+    if (scheme == QSplineScheme::kks) {
+      const double u = 1 - t;
+      return {-u * u / 2, (9 * t2 - 12 * t) / 6, (-9 * t2 + 6 * t + 3) / 6, t2 / 2};
+    }
+    if (scheme ==
+        QSplineScheme::quintic) {  // numerically, as in blend(): dB^5_k = 5 (B^4_{k-1} - B^4_k)
+      const double u = 1 - t;
+      const double B4[5] = {u * u * u * u, 4 * t * u * u * u, 6 * t2 * u * u, 4 * t3 * u, t3 * t};
+      std::array<double, 4> c{0, 0, 0, 0};
+      const auto V = quintic_points(s);
+      for (int k = 0; k < 6; ++k) {
+        const double dB = 5 * ((k > 0 ? B4[k - 1] : 0.0) - (k < 5 ? B4[k] : 0.0));
+        for (int j = 0; j < 4; ++j)
+          c[static_cast<std::size_t>(j)] +=
+              dB * V[static_cast<std::size_t>(k)][static_cast<std::size_t>(j)];
+      }
+      return c;
+    }
+    return {2 * t3 - 4.5 * t2 + 3 * t - 0.5, -2 * t3 + 7.5 * t2 - 6 * t,
+            -2 * t3 - 1.5 * t2 + 3 * t + 0.5, 2 * t3 - 1.5 * t2};
+  }
+
+  /// dt/du: the local parameter's rate in segment s.
+  double local_rate(int s) const {
+    if (scheme == QSplineScheme::quintic)
+      return 1 / (knots[static_cast<std::size_t>(s + 1)] - knots[static_cast<std::size_t>(s)]);
+    return segments() / (b() - a());
+  }
+
+  /// The angular velocity at u in the fixed frame, 2 q'(u) q(u)^-1 (radians per unit of u).
+  Eigen::Vector3d angular_velocity(double u) const {
+    const auto [s, t] = locate(u);
+    const auto c = blend(s, t);
+    const auto d = blend_derivative(s, t);
+    const double c3 = c[3], c2 = c[2] + c3, c1 = c[1] + c2;
+    const double d3 = d[3], d2 = d[2] + d3, d1 = d[1] + d2;
+    const auto k = static_cast<std::size_t>(s);
+    const auto e1 = exp_pure(omega[k] * c1), e2 = exp_pure(omega[k + 1] * c2),
+               e3 = exp_pure(omega[k + 2] * c3);
+    // d/dt exp(c w) = exp(c w) c' w (w commutes with itself).
+    const Quaternion<double> dq =
+        ctrl[k] * (e1 * omega[k] * d1 * e2 * e3 + e1 * e2 * omega[k + 1] * d2 * e3 +
+                   e1 * e2 * e3 * omega[k + 2] * d3);
+    const Quaternion<double> q = ctrl[k] * e1 * e2 * e3;
+    return (2 * local_rate(s)) * (dq * q.conj()).vec();
   }
 
   /// The unit rotation at u.

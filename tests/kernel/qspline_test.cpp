@@ -209,6 +209,23 @@ TEST(QSpline, KksRefusesKeysTooFarApart) {
   }
 }
 
+// The analytic angular velocity 2 q' q^-1 agrees with a central difference of the rotation.
+TEST(QSpline, AngularVelocityIsTheDerivativeOfTheRotation) {
+  const Keys k = random_keys(9, 6);
+  const std::vector<double> u = {0, 0.7, 2, 2.5, 4, 5};
+  for (const QuaternionSpline& s : {kernel::quartic_spline(k.q, k.p, 0, 5), quintic(k, u, 0.9),
+                                    kernel::kks_spline(k.q, k.p, 0, 5)}) {
+    SCOPED_TRACE(kernel::to_string(s.scheme));
+    for (int j = 1; j < 50; ++j) {
+      const double x = 5.0 * j / 50 + 0.013;
+      const double h = 1e-6;
+      const Quaternion<double> dq = (s.rotation(x + h) - s.rotation(x - h)) * (1 / (2 * h));
+      const V3 fd = 2 * (dq * s.rotation(x).conj()).vec();
+      EXPECT_LE((s.angular_velocity(x) - fd).norm(), 1e-7 * (1 + fd.norm())) << "u = " << x;
+    }
+  }
+}
+
 TEST(QSpline, BadKeysAreRefused) {
   Keys k = random_keys(2, 4);
   // Keys a half-turn apart: q and a quaternion orthogonal to it.
