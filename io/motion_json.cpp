@@ -275,7 +275,9 @@ MotionFile parse_motion(const json& doc, const std::string& source) {
     throw Error(
         Errc::invalid_input,
         source +
-            ": type \"quaternion-spline\" (non-rational motion) is not supported by this command");
+            ": type \"quaternion-spline\" (non-rational motion) is not supported by this command "
+            "yet (info and eval read it; its trajectories and sweeps, approximations, are not "
+            "built yet)");
   if (type != "q-motion")
     throw Error(Errc::invalid_input,
                 source + ": type: expected \"q-motion\", found " + type.dump());
@@ -367,7 +369,10 @@ MotionFile parse_motion(const json& doc, const std::string& source) {
 }
 
 MotionFile read_motion(const std::string& path) {
-  const std::string text = read_text_file(path);
+  return parse_motion_text(read_text_file(path), path);
+}
+
+MotionFile parse_motion_text(const std::string& text, const std::string& path) {
   MotionFile f = parse_motion(parse_json(text, path), path);
   // The method block is metadata echoed back to users: keep its numbers as numbers (the
   // text-preserving parse turns float literals into strings).

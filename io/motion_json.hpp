@@ -37,6 +37,8 @@ struct MotionFile {
 MotionFile parse_motion(const nlohmann::json& doc, const std::string& source);
 /// Reads and validates a motion file.
 MotionFile read_motion(const std::string& path);
+/// The same for a motion file's text already read (`source` names it in messages).
+MotionFile parse_motion_text(const std::string& text, const std::string& source);
 
 /// The motion in double precision.
 kernel::QMotion<double> to_motion_double(const MotionFile& f);

@@ -16,6 +16,7 @@
 #include <qmotion/io/occt_info.hpp>
 #include <qmotion/io/poses.hpp>
 #include <qmotion/io/profiles.hpp>
+#include <qmotion/io/qspline.hpp>
 #include <qmotion/io/units.hpp>
 #include <qmotion/kernel/dual_quaternion.hpp>
 #include <qmotion/kernel/error.hpp>
@@ -24,6 +25,7 @@
 #include <qmotion/kernel/motion.hpp>
 #include <qmotion/kernel/motion_value.hpp>
 #include <qmotion/kernel/parametrization.hpp>
+#include <qmotion/kernel/qspline.hpp>
 #include <qmotion/kernel/quaternion.hpp>
 #include <qmotion/kernel/spline_interpolation.hpp>
 #include <qmotion/sweep/factors.hpp>

@@ -80,7 +80,8 @@ struct QuaternionSpline {
     }
     // Uniform constructions: the keys sit at uniform knots mapped linearly onto [a, b].
     const double g = (u - a()) / (b() - a()) * n;
-    s = std::min(n - 1, std::max(0, static_cast<int>(std::floor(g))));
+    // (comparisons first: a NaN or huge g must not reach the integer conversion)
+    s = g >= n ? n - 1 : g > 0 ? static_cast<int>(std::floor(g)) : 0;
     return {s, g - s};
   }
 
@@ -207,6 +208,9 @@ inline void prepare_keys(QuaternionSpline& s) {
     throw Error(Errc::invalid_input, std::string(to_string(s.scheme)) +
                                          ": needs at least two keys, with one position and "
                                          "one parameter each");
+  if (!std::isfinite(s.knots.back() - s.knots.front()))
+    throw Error(Errc::invalid_input,
+                std::string(to_string(s.scheme)) + ": the parameter interval is not finite");
   for (std::size_t i = 1; i < n; ++i)
     if (!(s.knots[i - 1] < s.knots[i]))
       throw Error(Errc::invalid_input, std::string(to_string(s.scheme)) +

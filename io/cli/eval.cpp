@@ -7,6 +7,7 @@
 #include <qmotion/io/json_number.hpp>
 #include <qmotion/io/motion_info.hpp>
 #include <qmotion/io/motion_json.hpp>
+#include <qmotion/io/qspline.hpp>
 #include <qmotion/kernel/error.hpp>
 
 namespace qmotion::cli {
@@ -25,18 +26,26 @@ Command add_eval(CLI::App& app) {
       ->allow_extra_args(false);
   sub->add_option("--point", o->point,
                   "Point x,y,z of the moving space whose image is reported (default: the origin)");
-  return {sub, [o] {
-            const io::MotionFile f = io::read_motion(o->path);
-            const double t = io::parse_number_text(o->t, "--t").value;
-            const Eigen::Vector3d x =
-                o->point.empty() ? Eigen::Vector3d::Zero() : io::parse_point(o->point, "--point");
-            std::string warning;
-            const auto out = io::motion_eval(f, t, x, &warning, o->t);
-            if (!warning.empty())
-              std::cerr << "qmotion: warning: " << o->path << " " << warning << "\n";
-            std::cout << out.dump(2) << '\n';
-            return 0;
-          }};
+  return {
+      sub, [o] {
+        const std::string text = io::read_text_file(o->path);
+        const nlohmann::json doc = io::parse_json(text, o->path);
+        const double t = io::parse_number_text(o->t, "--t").value;
+        const Eigen::Vector3d x =
+            o->point.empty() ? Eigen::Vector3d::Zero() : io::parse_point(o->point, "--point");
+        if (io::is_qspline_document(doc)) {
+          std::cout << io::qspline_eval(io::qspline_from_document(doc, o->path), t, x, o->t).dump(2)
+                    << '\n';
+          return 0;
+        }
+        const io::MotionFile f = io::parse_motion_text(text, o->path);
+        std::string warning;
+        const auto out = io::motion_eval(f, t, x, &warning, o->t);
+        if (!warning.empty())
+          std::cerr << "qmotion: warning: " << o->path << " " << warning << "\n";
+        std::cout << out.dump(2) << '\n';
+        return 0;
+      }};
 }
 
 }  // namespace qmotion::cli

@@ -3,8 +3,10 @@
 #include <iostream>
 #include <memory>
 #include <qmotion/io/cli/command.hpp>
+#include <qmotion/io/json_number.hpp>
 #include <qmotion/io/motion_info.hpp>
 #include <qmotion/io/motion_json.hpp>
+#include <qmotion/io/qspline.hpp>
 #include <qmotion/kernel/error.hpp>
 
 namespace qmotion::cli {
@@ -17,7 +19,20 @@ Command add_info(CLI::App& app) {
   sub->add_flag("--exact", o->second,
                 "Compute the Plucker residual in exact rational arithmetic from the file's digits");
   return {sub, [o] {
-            std::cout << io::motion_info(io::read_motion(o->first), o->second).dump(2) << '\n';
+            const std::string text = io::read_text_file(o->first);
+            const nlohmann::json doc = io::parse_json(text, o->first);
+            if (io::is_qspline_document(doc)) {
+              if (o->second)
+                throw Error(Errc::invalid_input,
+                            o->first +
+                                ": --exact is for rational motions (q-motion files); a "
+                                "quaternion spline is not rational");
+              std::cout << io::qspline_info(doc, io::qspline_from_document(doc, o->first)).dump(2)
+                        << '\n';
+              return 0;
+            }
+            std::cout << io::motion_info(io::parse_motion_text(text, o->first), o->second).dump(2)
+                      << '\n';
             return 0;
           }};
 }

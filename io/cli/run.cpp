@@ -23,7 +23,7 @@ int run(int argc, char** argv) {
 
   const std::vector<Command> commands = {add_info(app),  add_eval(app),       add_interpolate(app),
                                          add_poses(app), add_trajectory(app), add_sweep(app),
-                                         add_check(app), add_demo(app)};
+                                         add_check(app), add_demo(app),       add_qspline(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {

@@ -1,0 +1,302 @@
+// io/qspline.cpp
+#include <cmath>
+#include <qmotion/io/json_number.hpp>
+#include <qmotion/io/qspline.hpp>
+#include <qmotion/kernel/error.hpp>
+#include <qmotion/kernel/parametrization.hpp>
+#include <qmotion/kernel/pose.hpp>
+#include <sstream>
+
+namespace qmotion::io {
+namespace {
+
+using json = nlohmann::json;
+using kernel::QSplineScheme;
+using kernel::Quaternion;
+
+std::optional<QSplineScheme> scheme_from_string(const std::string& s) {
+  for (auto k : {QSplineScheme::kks, QSplineScheme::quintic, QSplineScheme::quartic})
+    if (s == kernel::to_string(k)) return k;
+  return std::nullopt;
+}
+
+json quat_json(const Quaternion<double>& q) { return json{q.w(), q.x(), q.y(), q.z()}; }
+json vec_json(const Eigen::Vector3d& v) { return json{v(0), v(1), v(2)}; }
+
+/// --tension: one number for every key or one per key, finite and not negative.
+std::vector<double> tensions(const std::string& text, std::size_t keys) {
+  std::vector<double> a;
+  if (text.empty()) return std::vector<double>(keys, 0.5);
+  std::stringstream ss(text);
+  for (std::string cell; std::getline(ss, cell, ',');) {
+    const double v = parse_number_text(cell, "--tension").value;
+    if (v < 0)
+      throw Error(Errc::invalid_input, "--tension: a negative tension (" + cell +
+                                           ") reverses the curve's direction at its key; "
+                                           "expected numbers >= 0 (default 0.5)");
+    a.push_back(v);
+  }
+  if (a.size() == 1) return std::vector<double>(keys, a.front());
+  if (a.size() != keys)
+    throw Error(Errc::invalid_input,
+                "--tension: expected one tension for every pose or one per "
+                "pose (" +
+                    std::to_string(keys) + "), found " + std::to_string(a.size()));
+  return a;
+}
+
+/// An array of arrays of `width` finite numbers, named `field` in messages.
+template <int Width>
+std::vector<Eigen::Matrix<double, Width, 1>> rows(const json& doc, const char* field,
+                                                  const std::string& source) {
+  const json& a = require(doc, field, source);
+  if (!a.is_array() || a.empty())
+    throw Error(Errc::invalid_input, source + ": " + field + ": expected an array");
+  std::vector<Eigen::Matrix<double, Width, 1>> out;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const std::string where = source + ": " + field + "[" + std::to_string(i) + "]";
+    if (!a[i].is_array() || a[i].size() != Width)
+      throw Error(Errc::invalid_input, where + ": expected " + std::to_string(Width) + " numbers");
+    Eigen::Matrix<double, Width, 1> v;
+    for (int k = 0; k < Width; ++k)
+      v(k) = read_number(a[i][static_cast<std::size_t>(k)], where).value;
+    out.push_back(v);
+  }
+  return out;
+}
+
+std::vector<double> numbers(const json& doc, const char* field, const std::string& source) {
+  const json& a = require(doc, field, source);
+  if (!a.is_array())
+    throw Error(Errc::invalid_input, source + ": " + field + ": expected an array");
+  std::vector<double> out;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    out.push_back(read_number(a[i], source + ": " + field + "[" + std::to_string(i) + "]").value);
+  return out;
+}
+
+std::vector<Quaternion<double>> quaternions(const json& doc, const char* field,
+                                            const std::string& source) {
+  std::vector<Quaternion<double>> q;
+  for (const auto& v : rows<4>(doc, field, source)) {
+    if (v.norm() == 0)
+      throw Error(Errc::invalid_input, source + ": " + field + ": a zero quaternion");
+    q.emplace_back(v(0), v(1), v(2), v(3));
+  }
+  return q;
+}
+
+}  // namespace
+
+QSplineMotion qspline(const PoseSet& set, const QSplineOptions& o) {
+  const auto scheme = scheme_from_string(o.scheme);
+  if (!scheme)
+    throw Error(Errc::invalid_input,
+                "--scheme: expected kks, quintic or quartic, found '" + o.scheme + "'");
+  if (*scheme != QSplineScheme::quintic && !o.tension.empty())
+    throw Error(Errc::invalid_input, "--tension is for --scheme quintic");
+  const std::string rule_name = !o.param.empty() ? o.param : (set.has_t() ? "given" : "uniform");
+  const auto rule = kernel::param_rule_from_string(rule_name);
+  if (!rule)
+    throw Error(Errc::invalid_input,
+                "--param: expected given, uniform, chordal, star-chordal, centripetal, angular or "
+                "angular-chordal, found '" +
+                    rule_name + "'");
+  if (*rule == kernel::ParamRule::given && !set.has_t())
+    throw Error(
+        Errc::invalid_input,
+        set.source +
+            ": --param given needs a t for every pose; the file has none (try --param uniform)");
+  const auto poses = to_poses_double(set);
+  const std::vector<double> t = kernel::parametrize(poses, *rule);
+  std::vector<Quaternion<double>> keys;
+  std::vector<Eigen::Vector3d> positions;
+  for (const auto& p : poses) {
+    keys.push_back(p.rotation);
+    positions.push_back(p.position);
+  }
+  const double a = t.front(), b = t.back();
+  QSplineMotion out;
+  try {
+    if (*scheme == QSplineScheme::quintic)
+      out.spline = kernel::quintic_spline(keys, positions, t, tensions(o.tension, keys.size()));
+    else if (*scheme == QSplineScheme::quartic)
+      out.spline = kernel::quartic_spline(keys, positions, a, b);
+    else
+      out.spline = kernel::kks_spline(keys, positions, a, b);
+  } catch (const Error& e) {
+    if (std::string(e.what()).rfind("--tension", 0) == 0) throw;
+    throw Error(e.code(), set.source + ": " + e.what());
+  }
+  const auto& s = out.spline;
+  // Uniform constructions: are the rule's parameters where the keys are?
+  double off = 0;
+  for (std::size_t i = 0; i < t.size(); ++i) off = std::max(off, std::abs(t[i] - s.knots[i]));
+  const bool moved = off > 1e-12 * (b - a);
+
+  json doc;
+  doc["type"] = "quaternion-spline";
+  doc["scheme"] = kernel::to_string(s.scheme);
+  doc["units"] = set.units;
+  doc["param_range"] = {a, b};
+  doc["knots"] = s.knots;
+  json k = json::array(), p = json::array();
+  for (const auto& q : s.keys) k.push_back(quat_json(q));
+  for (const auto& x : s.positions) p.push_back(vec_json(x));
+  doc["keys"] = k;
+  doc["positions"] = p;
+  if (s.scheme == QSplineScheme::quintic) doc["tension"] = s.tension;
+  if (s.scheme == QSplineScheme::kks) {
+    json c = json::array(), cp = json::array();
+    for (const auto& q : s.ctrl) c.push_back(quat_json(q));
+    for (const auto& x : s.pctrl) cp.push_back(vec_json(x));
+    doc["control_quaternions"] = c;
+    doc["control_positions"] = cp;
+  }
+  json method;
+  method["param"] = kernel::to_string(*rule);
+  method["parameters"] = t;
+  if (s.scheme != QSplineScheme::quintic) method["uniform_keys"] = moved;
+  if (s.scheme == QSplineScheme::kks) {
+    method["iterations"] = s.iterations;
+    method["contraction"] = s.contraction;
+    method["fixed_point_residual"] = s.fixed_point_residual;
+    method["newton_steps"] = s.newton_steps;
+    method["residual"] = s.residual;
+  }
+  method["input_poses"] = poses_to_json(set);
+  doc["method"] = method;
+  out.document = doc;
+
+  std::ostringstream os;
+  os << kernel::to_string(s.scheme) << ", " << s.segments() << " segments";
+  if (s.scheme == QSplineScheme::kks)
+    os << ", " << s.iterations << " iterations + " << s.newton_steps
+       << " Gauss-Newton steps, residual " << s.residual << " rad";
+  if (moved)
+    os << "; keys at uniform knots on [" << a << ", " << b << "] (the " << kernel::to_string(*rule)
+       << " parameters are not uniform)";
+  out.summary = os.str();
+  return out;
+}
+
+bool is_qspline_document(const json& doc) {
+  return doc.is_object() && doc.contains("type") && doc["type"] == "quaternion-spline";
+}
+
+kernel::QuaternionSpline qspline_from_document(const json& doc, const std::string& source) {
+  const json& sj = require(doc, "scheme", source);
+  const auto scheme = scheme_from_string(sj.is_string() ? sj.get<std::string>() : "");
+  if (!scheme)
+    throw Error(Errc::invalid_input, source + ": scheme: expected kks, quintic or quartic");
+  const auto keys = quaternions(doc, "keys", source);
+  std::vector<Eigen::Vector3d> positions = rows<3>(doc, "positions", source);
+  const std::vector<double> knots = numbers(doc, "knots", source);
+  if (positions.size() != keys.size() || knots.size() != keys.size())
+    throw Error(Errc::invalid_input,
+                source + ": keys, positions and knots: expected one of each per key");
+  if (knots.size() < 2 || !(knots.front() < knots.back()))
+    throw Error(Errc::invalid_input, source + ": knots: expected at least two, increasing");
+  kernel::QuaternionSpline s;
+  try {
+    if (*scheme == QSplineScheme::quintic)
+      return kernel::quintic_spline(keys, positions, knots, numbers(doc, "tension", source));
+    if (*scheme == QSplineScheme::quartic)
+      return kernel::quartic_spline(keys, positions, knots.front(), knots.back());
+    // KKS: the recorded solution, not a new solve.
+    s.scheme = QSplineScheme::kks;
+    s.knots = knots;
+    s.keys = keys;
+    s.positions = positions;
+    kernel::detail::prepare_keys(s);
+    for (const auto& q : quaternions(doc, "control_quaternions", source))
+      s.ctrl.push_back(kernel::normalized(q));
+    s.pctrl = rows<3>(doc, "control_positions", source);
+    if (s.ctrl.size() != keys.size() + 2 || s.pctrl.size() != keys.size() + 2)
+      throw Error(Errc::invalid_input, source +
+                                           ": control_quaternions and control_positions: "
+                                           "expected two more than keys");
+    kernel::detail::finish(s);
+  } catch (const Error& e) {
+    if (std::string(e.what()).rfind(source, 0) == 0) throw;
+    throw Error(e.code(), source + ": " + e.what());
+  }
+  for (std::size_t i = 1; i < s.knots.size(); ++i)
+    if (!(std::abs((s.knots[i] - s.knots[i - 1]) - (s.b() - s.a()) / s.segments()) <=
+          1e-9 * (s.b() - s.a())))
+      throw Error(Errc::invalid_input, source + ": knots: a kks spline has uniform knots");
+  // The solve's record (numbers, or their text from a text-preserving parse).
+  const json none;
+  const json& m = doc.contains("method") && doc["method"].is_object() ? doc["method"] : none;
+  auto get = [&](const char* key) {
+    if (!m.is_object() || !m.contains(key)) return 0.0;
+    const double v = read_number(m[key], source + ": method." + key).value;
+    return std::isfinite(v) && v >= 0 && v < 1e9 ? v : 0.0;
+  };
+  s.iterations = static_cast<int>(get("iterations"));
+  s.contraction = get("contraction");
+  s.fixed_point_residual = get("fixed_point_residual");
+  s.newton_steps = static_cast<int>(get("newton_steps"));
+  s.residual = 0;
+  for (std::size_t i = 0; i < s.keys.size(); ++i)
+    s.residual =
+        std::max(s.residual, kernel::detail::rotation_distance(s.keys[i], s.rotation(s.knots[i])));
+  return s;
+}
+
+json qspline_info(const json& doc, const kernel::QuaternionSpline& s) {
+  json out;
+  out["type"] = "quaternion-spline";
+  out["scheme"] = kernel::to_string(s.scheme);
+  out["basis"] = "quaternion-spline";
+  out["degree"] = nullptr;  // not a polynomial motion: trajectories are approximated
+  out["order"] = nullptr;
+  out["segments"] = s.segments();
+  out["param_range"] = {s.a(), s.b()};
+  out["units"] = doc.contains("units") ? doc["units"] : json("mm");
+  out["knots"] = s.knots;
+  out["plucker_residual"] = 0.0;
+  json res = json::array();
+  for (std::size_t i = 0; i < s.keys.size(); ++i) {
+    const auto want = kernel::DualQuaternion<double>::pose(s.positions[i], s.keys[i]);
+    const auto got =
+        kernel::DualQuaternion<double>::pose(s.position(s.knots[i]), s.rotation(s.knots[i]));
+    res.push_back(kernel::pose_residual(got, want));
+  }
+  out["interpolation_residual"] = res;
+  out["poles"] = json::array();
+  if (s.scheme == QSplineScheme::quintic) out["tension"] = s.tension;
+  if (s.scheme == QSplineScheme::kks) {
+    out["iterations"] = s.iterations;
+    out["contraction"] = s.contraction;
+    out["fixed_point_residual"] = s.fixed_point_residual;
+    out["newton_steps"] = s.newton_steps;
+    out["residual"] = s.residual;
+  }
+  if (doc.contains("method") && doc["method"].is_object() && doc["method"].contains("uniform_keys"))
+    out["uniform_keys"] = doc["method"]["uniform_keys"];
+  return out;
+}
+
+json qspline_eval(const kernel::QuaternionSpline& s, double t, const Eigen::Vector3d& point,
+                  const std::string& t_text) {
+  if (!(t >= s.a() && t <= s.b())) {
+    std::ostringstream os;
+    os.precision(17);
+    os << "--t " << (t_text.empty() ? std::to_string(t) : t_text)
+       << " is outside the motion's parameter interval [" << s.a() << ", " << s.b() << "]";
+    throw Error(Errc::invalid_input, os.str());
+  }
+  Quaternion<double> r = s.rotation(t);
+  if (r.w() < 0) r = -r;
+  const Eigen::Vector3d p = s.position(t);
+  json out;
+  out["t"] = t;
+  out["position"] = vec_json(p);
+  out["quaternion"] = quat_json(r);
+  out["point"] = vec_json(kernel::rotate(r, point) + p);
+  out["angular_velocity"] = vec_json(s.angular_velocity(t));
+  return out;
+}
+
+}  // namespace qmotion::io
