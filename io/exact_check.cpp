@@ -82,18 +82,23 @@ int gcd_reduced_degree(const kernel::Bernstein<Eigen::Matrix<Rational, 4, 1>>& p
   return top - g.degree();
 }
 
+/// The denominator of x in lowest terms.
+Integer denominator(const Rational& x) {
+  CGAL::Fraction_traits<Rational>::Numerator_type num;
+  CGAL::Fraction_traits<Rational>::Denominator_type den;
+  CGAL::Fraction_traits<Rational>::Decompose()(x, num, den);
+  return den;
+}
+
 /// The same projective motion with integer control points: the motion times the least
 /// common multiple of its coordinates' denominators. The exact products below (Plucker
 /// polynomial, trajectories) then work on integers and skip most rational gcds.
 kernel::QMotion<Rational> integral(const kernel::QMotion<Rational>& m) {
-  using FT = CGAL::Fraction_traits<Rational>;
   Integer lcm(1);
   for (const auto& q : m.curve.ctrl())
     for (const auto* part : {&q.real(), &q.dual()})
       for (const Rational& v : {part->w(), part->x(), part->y(), part->z()}) {
-        FT::Numerator_type num;
-        FT::Denominator_type den;
-        FT::Decompose()(v, num, den);
+        const Integer den = denominator(v);
         lcm = lcm / CGAL::gcd(lcm, den) * den;
       }
   std::vector<kernel::DualQuaternion<Rational>> ctrl;
@@ -242,12 +247,8 @@ json check_exact(const std::string& motion_path, const std::optional<Eigen::Vect
   // Trajectory order: exact gcd per Bezier piece, against what `trajectory` writes.
   const Eigen::Vector3d x = point ? *point : Eigen::Vector3d(0.37, -0.58, 0.72);
   Eigen::Matrix<Rational, 4, 1> xh(Rational(1), Rational(x(0)), Rational(x(1)), Rational(x(2)));
-  for (int k = 1; k < 4; ++k) {  // homogeneous: integer coordinates, the same point
-    CGAL::Fraction_traits<Rational>::Numerator_type num;
-    CGAL::Fraction_traits<Rational>::Denominator_type den;
-    CGAL::Fraction_traits<Rational>::Decompose()(xh(k), num, den);
-    xh *= Rational(den);
-  }
+  for (int k = 1; k < 4; ++k)  // homogeneous: integer coordinates, the same point
+    xh *= Rational(denominator(xh(k)));
   int gcd_order = 0;
   for (const auto& piece : kernel::bezier_pieces(kernel::homogeneous_trajectory(whole, xh)))
     gcd_order = std::max(gcd_order, gcd_reduced_degree(piece));

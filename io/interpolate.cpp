@@ -131,21 +131,9 @@ Resolved resolve(const PoseSet& set, const InterpolateOptions& args) {
                                            ": a Bezier motion through " + std::to_string(count) +
                                            " poses has translational degree " + std::to_string(m));
   }
-  const std::string rule_name =
-      !args.param.empty() ? args.param : (set.has_t() ? "given" : "uniform");
-  const auto rule = kernel::param_rule_from_string(rule_name);
-  if (!rule)
-    throw Error(Errc::invalid_input,
-                "--param: expected given, uniform, chordal, star-chordal, centripetal, angular or "
-                "angular-chordal, found '" +
-                    rule_name + "'");
-  if (*rule == kernel::ParamRule::given && !set.has_t())
-    throw Error(
-        Errc::invalid_input,
-        set.source +
-            ": --param given needs a t for every pose; the file has none (try --param uniform)");
-  return Resolved{opt, sopt, *kernel::form_from_string(form), *rule,
-                  kernel::parametrize(to_poses_double(set), *rule)};
+  const kernel::ParamRule rule = param_rule(set, args.param);
+  return Resolved{opt, sopt, *kernel::form_from_string(form), rule,
+                  kernel::parametrize(to_poses_double(set), rule)};
 }
 
 #ifdef QMOTION_WITH_CGAL
@@ -176,6 +164,22 @@ kernel::Motion<kernel::Rational> interpolate_exact(const PoseSet& set, Interpola
   return run_exact(set, resolve(set, args));
 }
 #endif
+
+kernel::ParamRule param_rule(const PoseSet& set, const std::string& name) {
+  const std::string rule_name = !name.empty() ? name : (set.has_t() ? "given" : "uniform");
+  const auto rule = kernel::param_rule_from_string(rule_name);
+  if (!rule)
+    throw Error(Errc::invalid_input,
+                "--param: expected given, uniform, chordal, star-chordal, centripetal, angular or "
+                "angular-chordal, found '" +
+                    rule_name + "'");
+  if (*rule == kernel::ParamRule::given && !set.has_t())
+    throw Error(
+        Errc::invalid_input,
+        set.source +
+            ": --param given needs a t for every pose; the file has none (try --param uniform)");
+  return *rule;
+}
 
 InterpolatedMotion interpolate(const PoseSet& set, const InterpolateOptions& args) {
   const Resolved r = resolve(set, args);

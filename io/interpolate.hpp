@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <qmotion/io/motion_json.hpp>
 #include <qmotion/io/poses.hpp>
+#include <qmotion/kernel/parametrization.hpp>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,11 @@ struct InterpolatedMotion {
   std::string summary;
   std::vector<double> poles;
 };
+
+/// The parametrisation rule `name` (`--param`) for the poses; empty: `given` when every
+/// pose has t, else `uniform`. Errc::invalid_input for unknown names and for `given`
+/// without t.
+kernel::ParamRule param_rule(const PoseSet& poses, const std::string& name);
 
 /// A Q-motion through the poses (Jüttler 1994; SPEC §2). Throws Errc::invalid_input for
 /// bad options (naming the option, as the CLI does) and Errc::numerical_failure for

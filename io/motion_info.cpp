@@ -131,16 +131,19 @@ json motion_info(const MotionFile& f, bool exact) {
   return out;
 }
 
+void require_in_interval(double t, double a, double b, const std::string& t_text) {
+  if (t >= a && t <= b) return;
+  std::ostringstream os;
+  os.precision(17);
+  os << "--t " << (t_text.empty() ? std::to_string(t) : t_text)
+     << " is outside the motion's parameter interval [" << a << ", " << b << "]";
+  throw Error(Errc::invalid_input, os.str());
+}
+
 json motion_eval(const MotionFile& f, double t, const Eigen::Vector3d& x, std::string* warning,
                  const std::string& t_text) {
   const kernel::QMotion<double> m = to_motion_double(f);
-  if (t < m.a() || t > m.b()) {
-    std::ostringstream os;
-    os.precision(17);
-    os << "--t " << (t_text.empty() ? std::to_string(t) : t_text)
-       << " is outside the motion's parameter interval [" << m.a() << ", " << m.b() << "]";
-    throw Error(Errc::invalid_input, os.str());
-  }
+  require_in_interval(t, m.a(), m.b(), t_text);
   const auto q = kernel::evaluate(m, t);
   if (q.real().norm2() <= 1e-300)
     throw Error(Errc::numerical_failure,

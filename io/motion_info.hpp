@@ -18,6 +18,10 @@ inline constexpr int kMaxExactInfoSegments = 50;
 /// method. `exact`: order and residuals in CGAL::Exact_rational from the file's digits.
 nlohmann::json motion_info(const MotionFile& motion, bool exact = false);
 
+/// Refuses (Errc::invalid_input) a parameter t outside [a, b], spelling it as `t_text`
+/// (default: its value) in the message, as `eval` does for every kind of motion.
+void require_in_interval(double t, double a, double b, const std::string& t_text = "");
+
 /// The `eval` report at t: position (image of the moving origin), quaternion (unit, w >= 0)
 /// and the image of `point`. Throws Errc::invalid_input for t outside the interval and
 /// Errc::numerical_failure at a pole. `warning` receives a Plucker violation, if any;

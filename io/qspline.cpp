@@ -1,6 +1,8 @@
 // io/qspline.cpp
 #include <cmath>
+#include <qmotion/io/interpolate.hpp>
 #include <qmotion/io/json_number.hpp>
+#include <qmotion/io/motion_info.hpp>
 #include <qmotion/io/qspline.hpp>
 #include <qmotion/kernel/error.hpp>
 #include <qmotion/kernel/parametrization.hpp>
@@ -18,6 +20,15 @@ std::optional<QSplineScheme> scheme_from_string(const std::string& s) {
   for (auto k : {QSplineScheme::kks, QSplineScheme::quintic, QSplineScheme::quartic})
     if (s == kernel::to_string(k)) return k;
   return std::nullopt;
+}
+
+/// The figures of a KKS solve, as the file's method block and `info` give them.
+json kks_record(const kernel::QuaternionSpline& s) {
+  return {{"iterations", s.iterations},
+          {"contraction", s.contraction},
+          {"fixed_point_residual", s.fixed_point_residual},
+          {"newton_steps", s.newton_steps},
+          {"residual", s.residual}};
 }
 
 json quat_json(const Quaternion<double>& q) { return json{q.w(), q.x(), q.y(), q.z()}; }
@@ -95,20 +106,9 @@ QSplineMotion qspline(const PoseSet& set, const QSplineOptions& o) {
                 "--scheme: expected kks, quintic or quartic, found '" + o.scheme + "'");
   if (*scheme != QSplineScheme::quintic && !o.tension.empty())
     throw Error(Errc::invalid_input, "--tension is for --scheme quintic");
-  const std::string rule_name = !o.param.empty() ? o.param : (set.has_t() ? "given" : "uniform");
-  const auto rule = kernel::param_rule_from_string(rule_name);
-  if (!rule)
-    throw Error(Errc::invalid_input,
-                "--param: expected given, uniform, chordal, star-chordal, centripetal, angular or "
-                "angular-chordal, found '" +
-                    rule_name + "'");
-  if (*rule == kernel::ParamRule::given && !set.has_t())
-    throw Error(
-        Errc::invalid_input,
-        set.source +
-            ": --param given needs a t for every pose; the file has none (try --param uniform)");
+  const kernel::ParamRule rule = param_rule(set, o.param);
   const auto poses = to_poses_double(set);
-  const std::vector<double> t = kernel::parametrize(poses, *rule);
+  const std::vector<double> t = kernel::parametrize(poses, rule);
   std::vector<Quaternion<double>> keys;
   std::vector<Eigen::Vector3d> positions;
   for (const auto& p : poses) {
@@ -116,16 +116,17 @@ QSplineMotion qspline(const PoseSet& set, const QSplineOptions& o) {
     positions.push_back(p.position);
   }
   const double a = t.front(), b = t.back();
+  const std::vector<double> alpha =
+      *scheme == QSplineScheme::quintic ? tensions(o.tension, keys.size()) : std::vector<double>();
   QSplineMotion out;
-  try {
+  try {  // the kernel's refusals name keys; say which file they are in
     if (*scheme == QSplineScheme::quintic)
-      out.spline = kernel::quintic_spline(keys, positions, t, tensions(o.tension, keys.size()));
+      out.spline = kernel::quintic_spline(keys, positions, t, alpha);
     else if (*scheme == QSplineScheme::quartic)
       out.spline = kernel::quartic_spline(keys, positions, a, b);
     else
       out.spline = kernel::kks_spline(keys, positions, a, b);
   } catch (const Error& e) {
-    if (std::string(e.what()).rfind("--tension", 0) == 0) throw;
     throw Error(e.code(), set.source + ": " + e.what());
   }
   const auto& s = out.spline;
@@ -154,16 +155,10 @@ QSplineMotion qspline(const PoseSet& set, const QSplineOptions& o) {
     doc["control_positions"] = cp;
   }
   json method;
-  method["param"] = kernel::to_string(*rule);
+  method["param"] = kernel::to_string(rule);
   method["parameters"] = t;
   if (s.scheme != QSplineScheme::quintic) method["uniform_keys"] = moved;
-  if (s.scheme == QSplineScheme::kks) {
-    method["iterations"] = s.iterations;
-    method["contraction"] = s.contraction;
-    method["fixed_point_residual"] = s.fixed_point_residual;
-    method["newton_steps"] = s.newton_steps;
-    method["residual"] = s.residual;
-  }
+  if (s.scheme == QSplineScheme::kks) method.update(kks_record(s));
   method["input_poses"] = poses_to_json(set);
   doc["method"] = method;
   out.document = doc;
@@ -174,7 +169,7 @@ QSplineMotion qspline(const PoseSet& set, const QSplineOptions& o) {
     os << ", " << s.iterations << " iterations + " << s.newton_steps
        << " Gauss-Newton steps, residual " << s.residual << " rad";
   if (moved)
-    os << "; keys at uniform knots on [" << a << ", " << b << "] (the " << kernel::to_string(*rule)
+    os << "; keys at uniform knots on [" << a << ", " << b << "] (the " << kernel::to_string(rule)
        << " parameters are not uniform)";
   out.summary = os.str();
   return out;
@@ -197,34 +192,31 @@ kernel::QuaternionSpline qspline_from_document(const json& doc, const std::strin
                 source + ": keys, positions and knots: expected one of each per key");
   if (knots.size() < 2 || !(knots.front() < knots.back()))
     throw Error(Errc::invalid_input, source + ": knots: expected at least two, increasing");
+  // Every field is read (and refused, naming it) before the kernel builds the spline; the
+  // kernel's refusals name keys, so say which file they are in.
+  const std::vector<double> alpha =
+      *scheme == QSplineScheme::quintic ? numbers(doc, "tension", source) : std::vector<double>();
+  std::vector<Quaternion<double>> ctrl;
+  std::vector<Eigen::Vector3d> pctrl;
+  if (*scheme == QSplineScheme::kks) {  // the recorded solution, not a new solve
+    ctrl = quaternions(doc, "control_quaternions", source);
+    pctrl = rows<3>(doc, "control_positions", source);
+    for (std::size_t i = 1; i < knots.size(); ++i)
+      if (!(std::abs((knots[i] - knots[i - 1]) -
+                     (knots.back() - knots.front()) / static_cast<double>(knots.size() - 1)) <=
+            1e-9 * (knots.back() - knots.front())))
+        throw Error(Errc::invalid_input, source + ": knots: a kks spline has uniform knots");
+  }
   kernel::QuaternionSpline s;
   try {
     if (*scheme == QSplineScheme::quintic)
-      return kernel::quintic_spline(keys, positions, knots, numbers(doc, "tension", source));
+      return kernel::quintic_spline(keys, positions, knots, alpha);
     if (*scheme == QSplineScheme::quartic)
       return kernel::quartic_spline(keys, positions, knots.front(), knots.back());
-    // KKS: the recorded solution, not a new solve.
-    s.scheme = QSplineScheme::kks;
-    s.knots = knots;
-    s.keys = keys;
-    s.positions = positions;
-    kernel::detail::prepare_keys(s);
-    for (const auto& q : quaternions(doc, "control_quaternions", source))
-      s.ctrl.push_back(kernel::normalized(q));
-    s.pctrl = rows<3>(doc, "control_positions", source);
-    if (s.ctrl.size() != keys.size() + 2 || s.pctrl.size() != keys.size() + 2)
-      throw Error(Errc::invalid_input, source +
-                                           ": control_quaternions and control_positions: "
-                                           "expected two more than keys");
-    kernel::detail::finish(s);
+    s = kernel::kks_from_control(keys, positions, knots.front(), knots.back(), ctrl, pctrl);
   } catch (const Error& e) {
-    if (std::string(e.what()).rfind(source, 0) == 0) throw;
     throw Error(e.code(), source + ": " + e.what());
   }
-  for (std::size_t i = 1; i < s.knots.size(); ++i)
-    if (!(std::abs((s.knots[i] - s.knots[i - 1]) - (s.b() - s.a()) / s.segments()) <=
-          1e-9 * (s.b() - s.a())))
-      throw Error(Errc::invalid_input, source + ": knots: a kks spline has uniform knots");
   // The solve's record (numbers, or their text from a text-preserving parse).
   const json none;
   const json& m = doc.contains("method") && doc["method"].is_object() ? doc["method"] : none;
@@ -237,10 +229,6 @@ kernel::QuaternionSpline qspline_from_document(const json& doc, const std::strin
   s.contraction = get("contraction");
   s.fixed_point_residual = get("fixed_point_residual");
   s.newton_steps = static_cast<int>(get("newton_steps"));
-  s.residual = 0;
-  for (std::size_t i = 0; i < s.keys.size(); ++i)
-    s.residual =
-        std::max(s.residual, kernel::detail::rotation_distance(s.keys[i], s.rotation(s.knots[i])));
   return s;
 }
 
@@ -266,13 +254,7 @@ json qspline_info(const json& doc, const kernel::QuaternionSpline& s) {
   out["interpolation_residual"] = res;
   out["poles"] = json::array();
   if (s.scheme == QSplineScheme::quintic) out["tension"] = s.tension;
-  if (s.scheme == QSplineScheme::kks) {
-    out["iterations"] = s.iterations;
-    out["contraction"] = s.contraction;
-    out["fixed_point_residual"] = s.fixed_point_residual;
-    out["newton_steps"] = s.newton_steps;
-    out["residual"] = s.residual;
-  }
+  if (s.scheme == QSplineScheme::kks) out.update(kks_record(s));
   if (doc.contains("method") && doc["method"].is_object() && doc["method"].contains("uniform_keys"))
     out["uniform_keys"] = doc["method"]["uniform_keys"];
   return out;
@@ -280,13 +262,7 @@ json qspline_info(const json& doc, const kernel::QuaternionSpline& s) {
 
 json qspline_eval(const kernel::QuaternionSpline& s, double t, const Eigen::Vector3d& point,
                   const std::string& t_text) {
-  if (!(t >= s.a() && t <= s.b())) {
-    std::ostringstream os;
-    os.precision(17);
-    os << "--t " << (t_text.empty() ? std::to_string(t) : t_text)
-       << " is outside the motion's parameter interval [" << s.a() << ", " << s.b() << "]";
-    throw Error(Errc::invalid_input, os.str());
-  }
+  require_in_interval(t, s.a(), s.b(), t_text);
   Quaternion<double> r = s.rotation(t);
   if (r.w() < 0) r = -r;
   const Eigen::Vector3d p = s.position(t);

@@ -250,6 +250,15 @@ inline void repeat_ends(QuaternionSpline& s) {
   finish(s);
 }
 
+/// n keys at uniform knots on [a, b] (the last exactly b).
+inline std::vector<double> uniform_knots(std::size_t n, double a, double b) {
+  std::vector<double> u;
+  for (std::size_t i = 0; i < n; ++i)
+    u.push_back(n > 1 ? a + (b - a) * static_cast<double>(i) / static_cast<double>(n - 1) : a);
+  if (n > 1) u.back() = b;
+  return u;
+}
+
 /// q with w >= 0 (the same rotation; its powers take the shorter arc).
 inline Quaternion<double> short_arc(const Quaternion<double>& q) { return q.w() < 0 ? -q : q; }
 
@@ -263,11 +272,7 @@ inline QuaternionSpline quartic_spline(std::vector<Quaternion<double>> keys,
   s.scheme = QSplineScheme::quartic;
   s.keys = std::move(keys);
   s.positions = std::move(positions);
-  const std::size_t n = s.keys.size();
-  for (std::size_t i = 0; i < n; ++i)
-    s.knots.push_back(n > 1 ? a + (b - a) * static_cast<double>(i) / static_cast<double>(n - 1)
-                            : a);
-  if (n > 1) s.knots.back() = b;
+  s.knots = detail::uniform_knots(s.keys.size(), a, b);
   detail::prepare_keys(s);
   detail::repeat_ends(s);
   return s;
@@ -320,18 +325,26 @@ inline std::vector<Quaternion<double>> kks_with_ends(const std::vector<Quaternio
   return c;
 }
 
-/// The KKS curve at key i (local t = 0 of segment i): q_{i-1} (q_{i-1}^-1 q_i)^{5/6}
-/// (q_i^-1 q_{i+1})^{1/6}, from the control quaternions with ends c (c[k + 1] = q_k).
-inline Quaternion<double> kks_at_key(const std::vector<Quaternion<double>>& c, std::size_t i) {
-  const auto& a = c[i];
-  const auto& b = c[i + 1];
-  const auto& d = c[i + 2];
+/// The KKS curve at key i (local t = 0 of segment i) from its control quaternions
+/// q_{i-1}, q_i, q_{i+1}: q_{i-1} (q_{i-1}^-1 q_i)^{5/6} (q_i^-1 q_{i+1})^{1/6}.
+inline Quaternion<double> kks_at_key(const Quaternion<double>& a, const Quaternion<double>& b,
+                                     const Quaternion<double>& d) {
   return a * pow_unit(inverse(a) * b, 5.0 / 6) * pow_unit(inverse(b) * d, 1.0 / 6);
 }
 
 /// |log(Q^-1 q)|: the half-angle between two rotations (sign-free).
 inline double rotation_distance(const Quaternion<double>& Q, const Quaternion<double>& q) {
   return log_unit(short_arc(inverse(Q) * q)).vec().norm();
+}
+
+/// The largest KKS interpolation residual |log(Q_i^-1 q(u_i))| over the keys, from the
+/// control quaternions with ends c (c[k + 1] = q_k).
+inline double kks_residual(const std::vector<Quaternion<double>>& keys,
+                           const std::vector<Quaternion<double>>& c) {
+  double r = 0;
+  for (std::size_t i = 0; i < keys.size(); ++i)
+    r = std::max(r, rotation_distance(keys[i], kks_at_key(c[i], c[i + 1], c[i + 2])));
+  return r;
 }
 
 }  // namespace detail
@@ -356,10 +369,7 @@ inline QuaternionSpline kks_spline(std::vector<Quaternion<double>> keys,
   s.keys = std::move(keys);
   s.positions = std::move(positions);
   const std::size_t n = s.keys.size();
-  for (std::size_t i = 0; i < n; ++i)
-    s.knots.push_back(n > 1 ? a + (b - a) * static_cast<double>(i) / static_cast<double>(n - 1)
-                            : a);
-  if (n > 1) s.knots.back() = b;
+  s.knots = detail::uniform_knots(n, a, b);
   detail::prepare_keys(s);
   const auto& Q = s.keys;
 
@@ -401,14 +411,7 @@ inline QuaternionSpline kks_spline(std::vector<Quaternion<double>> keys,
       throw diverged("did not converge in " + std::to_string(it) + " iterations (last step " +
                      std::to_string(moved) + " rad)");
   }
-  auto residual = [&](const std::vector<Quaternion<double>>& x) {
-    const auto c = detail::kks_with_ends(x);
-    double r = 0;
-    for (std::size_t i = 0; i < n; ++i)
-      r = std::max(r, detail::rotation_distance(Q[i], detail::kks_at_key(c, i)));
-    return r;
-  };
-  s.fixed_point_residual = residual(q);
+  s.fixed_point_residual = detail::kks_residual(Q, detail::kks_with_ends(q));
 
   // Gauss-Newton on the interior equations r_i = log(Q_i^-1 q(i)) = 0, i = 1..n-2, in the
   // unknowns q_i exp(d_i): block tridiagonal (r_i reads q_{i-1}, q_i, q_{i+1}; the natural
@@ -417,10 +420,7 @@ inline QuaternionSpline kks_spline(std::vector<Quaternion<double>> keys,
     using M3 = Eigen::Matrix3d;
     const std::size_t m = n - 2;  // unknowns d_1 .. d_{n-2}
     auto r_at = [&](const std::vector<Quaternion<double>>& x, std::size_t i) {
-      const auto& a0 = x[i - 1];
-      const auto& b0 = x[i];
-      const auto at =
-          a0 * pow_unit(inverse(a0) * b0, 5.0 / 6) * pow_unit(inverse(b0) * x[i + 1], 1.0 / 6);
+      const auto at = detail::kks_at_key(x[i - 1], x[i], x[i + 1]);
       return Eigen::Vector3d(log_unit(detail::short_arc(inverse(Q[i]) * at)).vec());
     };
     for (int step = 0; step < options.max_refine_steps; ++step) {
@@ -466,14 +466,14 @@ inline QuaternionSpline kks_spline(std::vector<Quaternion<double>> keys,
       s.newton_steps = step + 1;
     }
   }
-  s.residual = residual(q);
+  s.ctrl = detail::kks_with_ends(q);
+  s.residual = detail::kks_residual(Q, s.ctrl);
   // A fixed point far from (11) (seen with axes turning by more than pi/2 between keys)
   // or a refinement that did not reach its goal is no interpolation.
   const double accept = options.refine ? 1e-10 : 10 * options.tol;
   if (!(s.residual <= accept))
     throw diverged("stopped at control quaternions that miss a key by " +
                    std::to_string(s.residual) + " rad");
-  s.ctrl = detail::kks_with_ends(q);
   detail::finish(s);
 
   // Positions: p_{i-1} + 4 p_i + p_{i+1} = 6 P_i inside, p_0 = P_0, p_{n-1} = P_{n-1}
@@ -497,6 +497,31 @@ inline QuaternionSpline kks_spline(std::vector<Quaternion<double>> keys,
   s.pctrl.assign(1, 2 * p[0] - p[1]);
   s.pctrl.insert(s.pctrl.end(), p.begin(), p.end());
   s.pctrl.push_back(2 * p[n - 1] - p[n - 2]);
+  return s;
+}
+
+/// A KKS spline from a recorded solution (no solve): the keys at uniform knots on [a, b],
+/// the control quaternions q_{-1} .. q_n and the position spline's control points
+/// p_{-1} .. p_n (two more than keys each). `residual` is recomputed from them; the solve's
+/// other figures are left for the caller to restore.
+inline QuaternionSpline kks_from_control(std::vector<Quaternion<double>> keys,
+                                         std::vector<Eigen::Vector3d> positions, double a, double b,
+                                         std::vector<Quaternion<double>> ctrl,
+                                         std::vector<Eigen::Vector3d> pctrl) {
+  QuaternionSpline s;
+  s.scheme = QSplineScheme::kks;
+  s.keys = std::move(keys);
+  s.positions = std::move(positions);
+  s.knots = detail::uniform_knots(s.keys.size(), a, b);
+  detail::prepare_keys(s);
+  if (ctrl.size() != s.keys.size() + 2 || pctrl.size() != s.keys.size() + 2)
+    throw Error(Errc::invalid_input,
+                "kks: expected two more control quaternions and points than keys");
+  for (auto& q : ctrl) q = normalized(q);
+  s.ctrl = std::move(ctrl);
+  s.pctrl = std::move(pctrl);
+  detail::finish(s);
+  s.residual = detail::kks_residual(s.keys, s.ctrl);
   return s;
 }
 
