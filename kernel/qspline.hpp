@@ -68,6 +68,15 @@ struct QuaternionSpline {
   double b() const { return knots.back(); }
   int segments() const { return static_cast<int>(knots.size()) - 1; }
 
+  /// The parametric continuity in u at interior key k (0 < k < n - 1): C2 for uniform
+  /// knots; the quintic between spans of different lengths is G2 but only C0 in u (its
+  /// segments run on local parameters of unit length).
+  int continuity(std::size_t k) const {
+    if (scheme != QSplineScheme::quintic) return 2;
+    const double h0 = knots[k] - knots[k - 1], h1 = knots[k + 1] - knots[k];
+    return std::abs(h1 - h0) <= 1e-12 * std::max(h0, h1) ? 2 : 0;
+  }
+
   /// The segment holding u (the last one for u = b) and u's local parameter in it.
   std::pair<int, double> locate(double u) const {
     const int n = segments();
@@ -185,6 +194,26 @@ struct QuaternionSpline {
     const auto k = static_cast<std::size_t>(s);
     return ctrl[k] * exp_pure(omega[k] * c1) * exp_pure(omega[k + 1] * c2) *
            exp_pure(omega[k + 2] * c3);
+  }
+
+  /// The velocity of the moving origin at u, d position / du.
+  Eigen::Vector3d velocity(double u) const {
+    const auto [s, t] = locate(u);
+    const auto d = blend_derivative(s, t);
+    Eigen::Vector3d v = Eigen::Vector3d::Zero();
+    for (int j = 0; j < 4; ++j)
+      v += d[static_cast<std::size_t>(j)] * pctrl[static_cast<std::size_t>(s + j)];
+    return local_rate(s) * v;
+  }
+
+  /// The rigid map at u as a 4x4 matrix acting on homogeneous points (x0, x):
+  /// (x0, x) -> (x0, R x + x0 p), the convention of sweep's matrix splines.
+  Eigen::Matrix4d frame(double u) const {
+    Eigen::Matrix4d m = Eigen::Matrix4d::Zero();
+    m(0, 0) = 1;
+    m.block<3, 1>(1, 0) = position(u);
+    m.block<3, 3>(1, 1) = rotation_matrix(rotation(u));
+    return m;
   }
 
   /// The position (image of the moving origin) at u.

@@ -226,6 +226,30 @@ TEST(QSpline, AngularVelocityIsTheDerivativeOfTheRotation) {
   }
 }
 
+TEST(QSpline, VelocityIsTheDerivativeOfThePositionAndFrameIsTheRigidMap) {
+  const Keys k = random_keys(4, 6);
+  const std::vector<double> u = {0, 0.7, 2, 2.5, 4, 5};
+  for (const QuaternionSpline& s : {kernel::quartic_spline(k.q, k.p, 0, 5), quintic(k, u, 0.9),
+                                    kernel::kks_spline(k.q, k.p, 0, 5)}) {
+    SCOPED_TRACE(kernel::to_string(s.scheme));
+    for (int j = 1; j < 50; ++j) {
+      const double x = 5.0 * j / 50 + 0.013;
+      const double h = 1e-6;
+      const V3 fd = (s.position(x + h) - s.position(x - h)) / (2 * h);
+      EXPECT_LE((s.velocity(x) - fd).norm(), 1e-6 * (1 + fd.norm())) << "u = " << x;
+      const V3 y(0.3, -2, 1.5);
+      const Eigen::Vector4d img = s.frame(x) * Eigen::Vector4d(1, y(0), y(1), y(2));
+      EXPECT_EQ(img(0), 1.0);
+      EXPECT_LE((img.tail<3>() - (kernel::rotate(s.rotation(x), y) + s.position(x))).norm(), 1e-12);
+    }
+  }
+  // Continuity in u: 2 for uniform knots; the quintic's unequal spans are C0 in u.
+  EXPECT_EQ(kernel::kks_spline(k.q, k.p, 0, 5).continuity(2), 2);
+  const QuaternionSpline q = quintic(k, u, 0.9);
+  EXPECT_EQ(q.continuity(1), 0);  // spans 0.7 and 1.3
+  EXPECT_EQ(quintic(k, uniform(6)).continuity(3), 2);
+}
+
 TEST(QSpline, BadKeysAreRefused) {
   Keys k = random_keys(2, 4);
   // Keys a half-turn apart: q and a quaternion orthogonal to it.
