@@ -2,6 +2,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <limits>
 #include <qmotion/io/atomic_file.hpp>
@@ -13,6 +14,7 @@
 #include <qmotion/io/units.hpp>
 #include <qmotion/kernel/error.hpp>
 #include <qmotion/sweep/approximate.hpp>
+#include <qmotion/sweep/fit.hpp>
 #include <qmotion/sweep/shell.hpp>
 #include <qmotion/sweep/solid.hpp>
 #include <qmotion/sweep/surface.hpp>
@@ -107,12 +109,13 @@ std::vector<Eigen::Vector3d> curve_samples(const kernel::BSpline<Eigen::Vector4d
   return s;
 }
 
-ExportInfo export_info(const kernel::Motion<double>& lm, const ExportOptions& opt,
+/// The file header of an export; `units` is the declared unit.
+ExportInfo export_info(const std::string& label, const std::string& units,
                        const std::string& what) {
   ExportInfo info;
-  info.units = opt.units.empty() ? lm.units : opt.units;
+  info.units = units;
   info.product = "qmotion " + what;
-  info.description = what + " of motion " + std::filesystem::path(lm.label()).filename().string();
+  info.description = what + " of motion " + std::filesystem::path(label).filename().string();
   return info;
 }
 
@@ -130,15 +133,16 @@ void scale_points(sweep::NurbsSurface<double>& s, double k) {
 }
 
 /// The declared unit and the factor from the motion's unit into it (--units converts).
-void resolve_units(const kernel::Motion<double>& lm, const ExportOptions& opt, ExportResult& r) {
-  r.units = opt.units.empty() ? lm.units : canonical_unit(opt.units, "--units");
-  r.unit_factor = unit_factor(lm.units, r.units);
+void resolve_units(const std::string& motion_units, const ExportOptions& opt, ExportResult& r) {
+  r.units = opt.units.empty() ? motion_units : canonical_unit(opt.units, "--units");
+  r.unit_factor = unit_factor(motion_units, r.units);
 }
 
 /// The JSON record of an approximation (tolerance and deviation in the declared unit).
 json approximation_json(const ExportOptions& opt, const ExportResult& r, double tol) {
   return json{{"max_degree", opt.max_degree},
               {"tolerance", tol * r.unit_factor},
+              {"degree", r.degree_u},
               {"measured_deviation", *r.approx_deviation},
               {"max_deviation", *r.approx_deviation},
               {"continuity", r.continuity_u}};
@@ -257,13 +261,41 @@ Eigen::Vector3d parse_point(const std::string& text, const std::string& flag) {
 
 namespace {
 
+std::string trajectory_what(const Eigen::Vector3d& point) {
+  return "trajectory of (" + fmt(point(0)) + "," + fmt(point(1)) + "," + fmt(point(2)) + ")";
+}
+
+/// Writes a trajectory in the format f (JSON with units, continuity and any approximation
+/// record; STEP or IGES with the header `info`).
+void write_curve(const sweep::NurbsCurve<double>& c, Format f, const std::string& path,
+                 const ExportResult& r, const ExportInfo& info, const json& approximation) {
+  switch (f) {
+    case Format::json: {
+      json doc = curve_to_json(c);
+      doc["units"] = r.units;
+      doc["continuity"] = r.continuity_u;
+      if (!approximation.is_null()) doc["approximation"] = approximation;
+      write_file_atomic(path, doc.dump(1) + "\n");
+      break;
+    }
+    case Format::step:
+      write_step(path, c, info);
+      break;
+    case Format::iges:
+      write_iges(path, c, info);
+      break;
+    case Format::stl:
+      break;
+  }
+}
+
 /// The trajectory NURBS in the declared unit, filling r; f decides the degree limit.
 sweep::NurbsCurve<double> compute_trajectory(const kernel::Motion<double>& lm,
                                              const Eigen::Vector3d& point, const ExportOptions& opt,
                                              Format f, ExportResult& r, double& tol) {
   check_max_degree(opt, f);
   refuse_poles(lm);
-  resolve_units(lm, opt, r);
+  resolve_units(lm.units, opt, r);
   const auto h0 = lm.factors
                       ? sweep::trajectory_from_factors(
                             *lm.factors, sweep::Vec4<double>(1, point(0), point(1), point(2)))
@@ -275,6 +307,7 @@ sweep::NurbsCurve<double> compute_trajectory(const kernel::Motion<double>& lm,
     const auto approx = sweep::approximate_homogeneous({h0}, opt.max_degree, tol);
     h = approx.curves.front();
     r.approx_deviation = approx.max_deviation * r.unit_factor;
+    r.approx_tolerance = tol * r.unit_factor;
   } else {
     check_degree(h.degree(), "the trajectory", f, opt);
     const auto extra = sweep::knots_for_positive_weights(h);
@@ -309,81 +342,15 @@ ExportResult export_trajectory(const kernel::Motion<double>& lm, const Eigen::Ve
   r.path = opt.output;
   double tol = 0;
   const auto c = compute_trajectory(lm, point, opt, f, r, tol);
-  auto info = export_info(
-      lm, opt, "trajectory of (" + fmt(point(0)) + "," + fmt(point(1)) + "," + fmt(point(2)) + ")");
-  info.units = r.units;
-  switch (f) {
-    case Format::json: {
-      json doc = curve_to_json(c);
-      doc["units"] = r.units;
-      doc["continuity"] = r.continuity_u;
-      if (r.approx_deviation) doc["approximation"] = approximation_json(opt, r, tol);
-      write_file_atomic(opt.output, doc.dump(1) + "\n");
-      break;
-    }
-    case Format::step:
-      write_step(opt.output, c, info);
-      break;
-    case Format::iges:
-      write_iges(opt.output, c, info);
-      break;
-    case Format::stl:
-      break;
-  }
+  write_curve(c, f, opt.output, r, export_info(lm.label(), r.units, trajectory_what(point)),
+              r.approx_deviation ? approximation_json(opt, r, tol) : json());
   return r;
 }
 
 namespace {
 
-/// The surfaces of the profile's edges in the declared unit, filling r (with the solid's
-/// checks and volume for opt.solid); f decides the degree limit.
-std::vector<sweep::NurbsSurface<double>> compute_surfaces(const kernel::Motion<double>& lm,
-                                                          const sweep::Profile<double>& profile,
-                                                          const std::string& profile_name,
-                                                          const ExportOptions& opt, Format f,
-                                                          ExportResult& r, double& tol) {
-  check_max_degree(opt, f);
-  refuse_poles(lm);
-  resolve_units(lm, opt, r);
-  if (f == Format::step || f == Format::iges)
-    for (const auto& e : profile.edges) check_degree(e.degree, "the profile", f, ExportOptions{});
-  if (opt.solid) {
-    if (!profile.closed)
-      throw Error(Errc::invalid_input, "--solid: the profile " + profile_name +
-                                           " is open (its last edge does not end where the "
-                                           "first starts); a solid needs a closed planar profile");
-    const sweep::PlanarRegion region = sweep::planar_region(profile);
-    const auto back = sweep::find_backsweep(lm, profile, region);
-    if (back.t) {
-      std::ostringstream os;
-      os.precision(12);
-      os << "--solid: the profile's region sweeps back over itself near t = " << *back.t
-         << " (a point of the region has zero or reversed normal velocity there), so the capped "
-            "sweep is not a solid; sweep a shorter interval or drop --solid for the open shell";
-      throw Error(Errc::numerical_failure, os.str());
-    }
-    r.volume = sweep::swept_volume(lm, region) * std::pow(r.unit_factor, 3);
-  }
-#ifdef QMOTION_WITH_CGAL
-  if (opt.self_intersection_check) {
-    r.self_intersection = sweep_self_intersections(lm, profile);
-    const auto& si = *r.self_intersection;
-    if (si.found() && (opt.fail_on_self_intersection || opt.solid))
-      throw Error(Errc::numerical_failure,
-                  std::string(opt.solid ? "--solid" : "--fail-on-self-intersection") +
-                      ": the sweep of " + profile_name + " intersects itself (" +
-                      std::to_string(si.pairs) + " crossing triangle pairs of a " +
-                      std::to_string(si.samples_t) + " x " + std::to_string(si.samples_v) +
-                      " tessellation; " + si.ranges() + ")" +
-                      (opt.solid ? ": a self-intersecting shell bounds no solid" : ""));
-  }
-#endif
-  std::vector<sweep::NurbsSurface<double>> surfaces;
-  for (const auto& e : profile.edges) {
-    surfaces.push_back(edge_surface(lm, e, opt, f, r, tol));
-    scale_points(surfaces.back(), r.unit_factor);
-  }
-  if (r.approx_deviation) *r.approx_deviation *= r.unit_factor;
+/// Degrees, lowest continuities and smallest weight of the surfaces, into r.
+void summarize_surfaces(const std::vector<sweep::NurbsSurface<double>>& surfaces, ExportResult& r) {
   r.degree_u = surfaces.front().degree_u;
   r.degree_v = surfaces.front().degree_v;
   r.continuity_u = r.degree_u;
@@ -396,6 +363,131 @@ std::vector<sweep::NurbsSurface<double>> compute_surfaces(const kernel::Motion<d
     for (const auto& row : s.weights) r.min_weight = std::min(r.min_weight, min_weight(row));
   }
   if (surfaces.size() > 1) r.continuity_v = std::min(r.continuity_v, 0);  // edges meet at C0
+}
+
+/// Writes the surfaces in the format f: JSON (one surface, or a shell of one face per edge,
+/// with units, continuity and any approximation record), STEP or IGES (a shell of C1 faces,
+/// or one face per edge with opt.single_face; caps and one solid with opt.solid), or an STL
+/// mesh. Sets r.faces and r.poles to what was written.
+void write_surfaces(const std::vector<sweep::NurbsSurface<double>>& surfaces, Format f,
+                    const ExportOptions& opt, ExportResult& r, const ExportInfo& info,
+                    const json& approximation) {
+  sweep::NurbsShell<double> shell;
+  for (const auto& s : surfaces) {
+    if (opt.single_face) {
+      shell.faces.push_back(s);
+    } else {
+      for (auto& piece : sweep::split_c0(s)) shell.faces.push_back(std::move(piece));
+    }
+    if (opt.solid) {
+      shell.cap_start.push_back(sweep::boundary_v_curve(s, false));
+      shell.cap_end.push_back(sweep::boundary_v_curve(s, true));
+    }
+  }
+  shell.closed = opt.solid;
+  const bool one_surface = surfaces.size() == 1 && !opt.solid;
+  switch (f) {
+    case Format::json: {  // exact surfaces per edge (JSON readers handle C0 knots)
+      json doc;
+      if (one_surface) {
+        doc = surface_to_json(surfaces.front());
+      } else {
+        doc = json{{"type", "nurbs_shell"}, {"closed", opt.solid}, {"faces", json::array()}};
+        for (const auto& s : surfaces) doc["faces"].push_back(surface_to_json(s));
+        if (opt.solid) doc["volume"] = *r.volume;
+      }
+      doc["units"] = r.units;
+      doc["continuity"] = {r.continuity_u, r.continuity_v};
+      if (!approximation.is_null()) doc["approximation"] = approximation;
+      write_file_atomic(opt.output, doc.dump(1) + "\n");
+      r.faces = static_cast<int>(surfaces.size());
+      r.poles = count_poles(surfaces);
+      return;
+    }
+    case Format::step:
+      write_step(opt.output, shell, info);
+      break;
+    case Format::iges:
+      write_iges(opt.output, shell, info);
+      break;
+    case Format::stl:
+      write_stl(opt.output, surfaces, 64);
+      break;
+  }
+  r.faces = static_cast<int>(shell.faces.size()) + (opt.solid ? 2 : 0);
+  r.poles = count_poles(shell.faces);
+}
+
+/// What a sweep is checked for before it is built: with opt.solid a closed planar profile
+/// whose region never sweeps back (`backsweep`) and its volume (`volume`, in the motion's
+/// unit); the self-intersection check (`self_intersection`) unless switched off, refused
+/// with --fail-on-self-intersection or --solid.
+void sweep_checks(
+    const sweep::Profile<double>& profile, const std::string& profile_name,
+    const ExportOptions& opt, ExportResult& r,
+    const std::function<sweep::BacksweepResult(const sweep::PlanarRegion&)>& backsweep,
+    const std::function<double(const sweep::PlanarRegion&)>& volume,
+    [[maybe_unused]] const std::function<SelfIntersection()>& self_intersection) {
+  if (opt.solid) {
+    if (!profile.closed)
+      throw Error(Errc::invalid_input, "--solid: the profile " + profile_name +
+                                           " is open (its last edge does not end where the "
+                                           "first starts); a solid needs a closed planar profile");
+    const sweep::PlanarRegion region = sweep::planar_region(profile);
+    const auto back = backsweep(region);
+    if (back.t) {
+      std::ostringstream os;
+      os.precision(12);
+      os << "--solid: the profile's region sweeps back over itself near t = " << *back.t
+         << " (a point of the region has zero or reversed normal velocity there), so the capped "
+            "sweep is not a solid; sweep a shorter interval or drop --solid for the open shell";
+      throw Error(Errc::numerical_failure, os.str());
+    }
+    r.volume = volume(region) * std::pow(r.unit_factor, 3);
+  }
+#ifdef QMOTION_WITH_CGAL
+  if (opt.self_intersection_check) {
+    r.self_intersection = self_intersection();
+    const auto& si = *r.self_intersection;
+    if (si.found() && (opt.fail_on_self_intersection || opt.solid))
+      throw Error(Errc::numerical_failure,
+                  std::string(opt.solid ? "--solid" : "--fail-on-self-intersection") +
+                      ": the sweep of " + profile_name + " intersects itself (" +
+                      std::to_string(si.pairs) + " crossing triangle pairs of a " +
+                      std::to_string(si.samples_t) + " x " + std::to_string(si.samples_v) +
+                      " tessellation; " + si.ranges() + ")" +
+                      (opt.solid ? ": a self-intersecting shell bounds no solid" : ""));
+  }
+#endif
+}
+
+/// The surfaces of the profile's edges in the declared unit, filling r (with the solid's
+/// checks and volume for opt.solid); f decides the degree limit.
+std::vector<sweep::NurbsSurface<double>> compute_surfaces(const kernel::Motion<double>& lm,
+                                                          const sweep::Profile<double>& profile,
+                                                          const std::string& profile_name,
+                                                          const ExportOptions& opt, Format f,
+                                                          ExportResult& r, double& tol) {
+  check_max_degree(opt, f);
+  refuse_poles(lm);
+  resolve_units(lm.units, opt, r);
+  if (f == Format::step || f == Format::iges)
+    for (const auto& e : profile.edges) check_degree(e.degree, "the profile", f, ExportOptions{});
+  sweep_checks(
+      profile, profile_name, opt, r,
+      [&](const sweep::PlanarRegion& region) { return sweep::find_backsweep(lm, profile, region); },
+      [&](const sweep::PlanarRegion& region) { return sweep::swept_volume(lm, region); },
+      [&] { return sweep_self_intersections(lm, profile); });
+  std::vector<sweep::NurbsSurface<double>> surfaces;
+  for (const auto& e : profile.edges) {
+    surfaces.push_back(edge_surface(lm, e, opt, f, r, tol));
+    scale_points(surfaces.back(), r.unit_factor);
+  }
+  if (r.approx_deviation) {
+    *r.approx_deviation *= r.unit_factor;
+    r.approx_tolerance = tol * r.unit_factor;
+  }
+  summarize_surfaces(surfaces, r);
   return surfaces;
 }
 
@@ -421,52 +513,9 @@ ExportResult export_surface(const kernel::Motion<double>& lm, const sweep::Profi
   r.path = opt.output;
   double tol = 0;
   const auto surfaces = compute_surfaces(lm, profile, profile_name, opt, f, r, tol);
-  sweep::NurbsShell<double> shell;
-  for (const auto& s : surfaces) {
-    if (opt.single_face) {
-      shell.faces.push_back(s);
-    } else {
-      for (auto& piece : sweep::split_c0(s)) shell.faces.push_back(std::move(piece));
-    }
-    if (opt.solid) {
-      shell.cap_start.push_back(sweep::boundary_v_curve(s, false));
-      shell.cap_end.push_back(sweep::boundary_v_curve(s, true));
-    }
-  }
-  shell.closed = opt.solid;
-  const bool one_surface = surfaces.size() == 1 && !opt.solid;
-  auto info = export_info(lm, opt, "kinematic surface of " + profile_name);
-  info.units = r.units;
-  switch (f) {
-    case Format::json: {  // exact surfaces per edge (JSON readers handle C0 knots)
-      json doc;
-      if (one_surface) {
-        doc = surface_to_json(surfaces.front());
-      } else {
-        doc = json{{"type", "nurbs_shell"}, {"closed", opt.solid}, {"faces", json::array()}};
-        for (const auto& s : surfaces) doc["faces"].push_back(surface_to_json(s));
-        if (opt.solid) doc["volume"] = *r.volume;
-      }
-      doc["units"] = r.units;
-      doc["continuity"] = {r.continuity_u, r.continuity_v};
-      if (r.approx_deviation) doc["approximation"] = approximation_json(opt, r, tol);
-      write_file_atomic(opt.output, doc.dump(1) + "\n");
-      r.faces = static_cast<int>(surfaces.size());
-      r.poles = count_poles(surfaces);
-      return r;
-    }
-    case Format::step:
-      write_step(opt.output, shell, info);
-      break;
-    case Format::iges:
-      write_iges(opt.output, shell, info);
-      break;
-    case Format::stl:
-      write_stl(opt.output, surfaces, 64);
-      break;
-  }
-  r.faces = static_cast<int>(shell.faces.size()) + (opt.solid ? 2 : 0);
-  r.poles = count_poles(shell.faces);
+  write_surfaces(surfaces, f, opt, r,
+                 export_info(lm.label(), r.units, "kinematic surface of " + profile_name),
+                 r.approx_deviation ? approximation_json(opt, r, tol) : json());
   return r;
 }
 
@@ -515,9 +564,18 @@ CheckFace check_curve(const sweep::NurbsCurve<double>& c,
 
 }  // namespace
 
-json check_geometry(const std::string& file, const kernel::Motion<double>& lm,
-                    const std::optional<sweep::Profile<double>>& profile,
-                    const std::optional<Eigen::Vector3d>& point, int grid) {
+namespace {
+
+/// A motion as check_geometry sees it: its interval, unit and the image place(t, x).
+struct Placement {
+  double a, b;
+  std::string units;
+  std::function<Eigen::Vector3d(double, const Eigen::Vector3d&)> place;
+};
+
+json check_placement(const std::string& file, const Placement& lm,
+                     const std::optional<sweep::Profile<double>>& profile,
+                     const std::optional<Eigen::Vector3d>& point, int grid) {
   const bool surface = profile.has_value();
   const std::string e = lower_ext(file);
   std::vector<CheckFace> faces;
@@ -574,7 +632,7 @@ json check_geometry(const std::string& file, const kernel::Motion<double>& lm,
   // reader already converted into the motion's unit: scale only the reported deviation.
   const bool cad = e != ".json";
   const double k = unit_factor(lm.units, file_units);
-  const double a = lm.curve.a(), b = lm.curve.b();
+  const double a = lm.a, b = lm.b;
   std::mt19937 rng(20261122);
   double dev = 0, u_lo = faces.front().u0, u_hi = faces.front().u1;
   bool weights_positive = true;
@@ -609,9 +667,8 @@ json check_geometry(const std::string& file, const kernel::Motion<double>& lm,
       std::vector<Eigen::Vector3d> r_ed;
       for (std::size_t s = 0; s < params.size(); ++s) {
         const double u = std::clamp(params[s].first, a, b);
-        const auto q = kernel::evaluate(lm.curve, u);
         const Eigen::Vector3d exact =
-            kernel::apply_point(q, surface ? sweep::evaluate(edges[ed], params[s].second) : *point);
+            lm.place(u, surface ? sweep::evaluate(edges[ed], params[s].second) : *point);
         r_ed.push_back(exact);
         worst = std::max(worst, (got[s] - exact).norm());
         if (!(worst < best)) break;  // cannot beat the best edge
@@ -655,6 +712,216 @@ json check_geometry(const std::string& file, const kernel::Motion<double>& lm,
   return out;
 }
 
+}  // namespace
+
+json check_geometry(const std::string& file, const kernel::Motion<double>& lm,
+                    const std::optional<sweep::Profile<double>>& profile,
+                    const std::optional<Eigen::Vector3d>& point, int grid) {
+  json out =
+      check_placement(file,
+                      Placement{lm.a(), lm.b(), lm.units,
+                                [&](double t, const Eigen::Vector3d& x) {
+                                  return kernel::apply_point(kernel::evaluate(lm.curve, t), x);
+                                }},
+                      profile, point, grid);
+  out["motion"] = "q-motion (rational, evaluated exactly in double)";
+  return out;
+}
+
+json check_geometry(const std::string& file, const QSplineMotion& m,
+                    const std::optional<sweep::Profile<double>>& profile,
+                    const std::optional<Eigen::Vector3d>& point, int grid) {
+  const kernel::QuaternionSpline& s = m.spline;
+  json out = check_placement(
+      file,
+      Placement{s.a(), s.b(), m.units,
+                [&](double t, const Eigen::Vector3d& x) {
+                  return Eigen::Vector3d(kernel::rotate(s.rotation(t), x) + s.position(t));
+                }},
+      profile, point, grid);
+  out["motion"] = std::string("quaternion-spline ") + kernel::to_string(s.scheme) +
+                  " (the motion itself: exp and log of its quaternions, not the fit)";
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------
+// Non-rational motions (SPEC §3): the rigid maps fitted once on one knot vector
+// (sweep::fit_frames); trajectories and surfaces are that matrix spline applied to points.
+
+namespace {
+
+/// The fit for the given points (Cartesian, the motion's unit), with the tolerance used.
+struct QSplineFit {
+  sweep::FrameFit fit;
+  double tol = 0;
+};
+
+QSplineFit fit_qspline(const QSplineMotion& m, const std::vector<Eigen::Vector3d>& pts,
+                       const ExportOptions& opt, Format f) {
+  check_max_degree(opt, f);
+  const kernel::QuaternionSpline& s = m.spline;
+  sweep::FrameFitOptions fo;
+  fo.degree = opt.max_degree > 0 ? opt.max_degree : kQSplineFitDegree;
+  if (opt.tol > 0) {
+    fo.tol = opt.tol;
+  } else {  // 1e-6 of the bounding-box diagonal of the points' trajectories
+    std::vector<Eigen::Vector3d> samples;
+    for (int i = 0; i <= 400; ++i) {
+      const double t = s.a() + (s.b() - s.a()) * i / 400;
+      const auto q = s.rotation(t);
+      const Eigen::Vector3d p = s.position(t);
+      for (const auto& x : pts) samples.push_back(kernel::rotate(q, x) + p);
+    }
+    fo.tol = 1e-6 * std::max(diagonal(samples), 1e-300);
+  }
+  std::vector<int> continuity;
+  for (std::size_t k = 1; k + 1 < s.knots.size(); ++k) continuity.push_back(s.continuity(k));
+  try {
+    return {sweep::fit_frames([&](double t) { return s.frame(t); }, s.knots, continuity, pts, fo),
+            fo.tol};
+  } catch (const Error& e) {
+    throw Error(e.code(), m.label() + ": " + e.what());
+  }
+}
+
+/// The approximation record of a fitted export (tolerance and deviation in the declared
+/// unit).
+json fit_json(const QSplineFit& q, const ExportResult& r) {
+  return json{{"method", "least-squares fit of the rigid maps on one knot vector (SPEC 3)"},
+              {"tolerance", q.tol * r.unit_factor},
+              {"measured_deviation", q.fit.max_deviation * r.unit_factor},
+              {"max_deviation", q.fit.max_deviation * r.unit_factor},
+              {"degree", q.fit.matrix.degree()},
+              {"poles_per_curve", q.fit.matrix.ctrl().size()},
+              {"spans", q.fit.spans},
+              {"check_samples", q.fit.check_samples},
+              {"continuity", r.continuity_u}};
+}
+
+void record_fit(const QSplineFit& q, ExportResult& r) {
+  r.approx_deviation = q.fit.max_deviation * r.unit_factor;
+  r.approx_tolerance = q.tol * r.unit_factor;
+  r.approx_spans = q.fit.spans;
+}
+
+sweep::NurbsCurve<double> compute_trajectory(const QSplineMotion& m, const Eigen::Vector3d& point,
+                                             const ExportOptions& opt, Format f, ExportResult& r,
+                                             QSplineFit& q) {
+  resolve_units(m.units, opt, r);
+  q = fit_qspline(m, {point}, opt, f);
+  sweep::NurbsCurve<double> c = sweep::to_nurbs(
+      sweep::apply(q.fit.matrix, sweep::Vec4<double>(1, point(0), point(1), point(2))));
+  scale_points(c, r.unit_factor);
+  record_fit(q, r);
+  r.degree_u = c.degree;
+  r.continuity_u = sweep::min_continuity(c.knots, c.degree);
+  r.poles = static_cast<int>(c.points.size());
+  r.min_weight = min_weight(c.weights);
+  return c;
+}
+
+std::vector<sweep::NurbsSurface<double>> compute_surfaces(const QSplineMotion& m,
+                                                          const sweep::Profile<double>& profile,
+                                                          const std::string& profile_name,
+                                                          const ExportOptions& opt, Format f,
+                                                          ExportResult& r, QSplineFit& q) {
+  resolve_units(m.units, opt, r);
+  if (f == Format::step || f == Format::iges)
+    for (const auto& e : profile.edges) check_degree(e.degree, "the profile", f, ExportOptions{});
+  std::vector<Eigen::Vector3d> pts;
+  for (const auto& e : profile.edges) pts.insert(pts.end(), e.points.begin(), e.points.end());
+  if (pts.empty())
+    throw Error(Errc::invalid_input, "the profile " + profile_name + " has no edges");
+  q = fit_qspline(m, pts, opt, f);
+  const kernel::QuaternionSpline& s = m.spline;
+  const auto& M = q.fit.matrix;
+  sweep_checks(
+      profile, profile_name, opt, r,
+      [&](const sweep::PlanarRegion& region) {  // on the fitted surface that is written
+        std::vector<kernel::BSpline<Eigen::Vector4d>> cols;
+        for (const auto& X : sweep::homogeneous_points(profile)) cols.push_back(sweep::apply(M, X));
+        return sweep::find_backsweep(
+            cols, sweep::apply(
+                      M, Eigen::Vector4d(0, region.normal(0), region.normal(1), region.normal(2))));
+      },
+      [&](const sweep::PlanarRegion& region) {  // of the motion itself: A |integral n . c'|
+        return region.area * std::abs(sweep::detail::integrate(
+                                 s.knots,
+                                 [&](double t) {
+                                   const auto rot = s.rotation(t);
+                                   const Eigen::Vector3d c = kernel::rotate(rot, region.centroid);
+                                   return kernel::rotate(rot, region.normal)
+                                       .dot(s.angular_velocity(t).cross(c) + s.velocity(t));
+                                 },
+                                 64));
+      },
+      [&] { return sweep_self_intersections(s, profile); });
+  std::vector<sweep::NurbsSurface<double>> surfaces;
+  for (const auto& e : profile.edges) {
+    sweep::HomogeneousSurface<double> hs{M.degree(), e.degree, M.knots(), e.knots, {}};
+    hs.poles.assign(M.ctrl().size(), std::vector<sweep::Vec4<double>>(e.points.size()));
+    for (std::size_t j = 0; j < e.points.size(); ++j) {
+      const sweep::Vec4<double> X(e.weights[j], e.weights[j] * e.points[j](0),
+                                  e.weights[j] * e.points[j](1), e.weights[j] * e.points[j](2));
+      for (std::size_t i = 0; i < M.ctrl().size(); ++i) hs.poles[i][j] = M.ctrl()[i] * X;
+    }
+    surfaces.push_back(sweep::to_nurbs(hs));
+    scale_points(surfaces.back(), r.unit_factor);
+  }
+  record_fit(q, r);
+  summarize_surfaces(surfaces, r);
+  return surfaces;
+}
+
+}  // namespace
+
+sweep::NurbsCurve<double> trajectory_nurbs(const QSplineMotion& m, const Eigen::Vector3d& point,
+                                           const ExportOptions& opt, ExportResult* result) {
+  ExportResult r;
+  QSplineFit q;
+  auto c = compute_trajectory(m, point, opt, Format::json, r, q);
+  if (result) *result = r;
+  return c;
+}
+
+std::vector<sweep::NurbsSurface<double>> sweep_nurbs(const QSplineMotion& m,
+                                                     const sweep::Profile<double>& profile,
+                                                     const ExportOptions& opt,
+                                                     ExportResult* result) {
+  ExportResult r;
+  QSplineFit q;
+  auto s = compute_surfaces(m, profile, "the profile", opt, Format::json, r, q);
+  r.faces = static_cast<int>(s.size());
+  r.poles = count_poles(s);
+  if (result) *result = r;
+  return s;
+}
+
+ExportResult export_trajectory(const QSplineMotion& m, const Eigen::Vector3d& point,
+                               const ExportOptions& opt) {
+  const Format f = output_format(opt.output, false);
+  ExportResult r;
+  r.path = opt.output;
+  QSplineFit q;
+  const auto c = compute_trajectory(m, point, opt, f, r, q);
+  write_curve(c, f, opt.output, r, export_info(m.label(), r.units, trajectory_what(point)),
+              fit_json(q, r));
+  return r;
+}
+
+ExportResult export_surface(const QSplineMotion& m, const sweep::Profile<double>& profile,
+                            const std::string& profile_name, const ExportOptions& opt) {
+  const Format f = output_format(opt.output, true);
+  ExportResult r;
+  r.path = opt.output;
+  QSplineFit q;
+  const auto surfaces = compute_surfaces(m, profile, profile_name, opt, f, r, q);
+  write_surfaces(surfaces, f, opt, r,
+                 export_info(m.label(), r.units, "kinematic surface of " + profile_name),
+                 fit_json(q, r));
+  return r;
+}
+
 namespace {
 void require_one(const Geometry& g, const char* what) {
   if (g.point.has_value() == g.profile.has_value())
@@ -673,6 +940,28 @@ json check(const std::string& file, const kernel::Motion<double>& motion, const 
            int grid) {
   require_one(geometry, "check");
   return check_geometry(file, motion, geometry.profile, geometry.point, grid);
+}
+
+ExportResult export_geometry(const QSplineMotion& motion, const Geometry& geometry,
+                             const ExportOptions& opt) {
+  require_one(geometry, "export");
+  if (geometry.point) return export_trajectory(motion, *geometry.point, opt);
+  return export_surface(motion, *geometry.profile, geometry.profile_name, opt);
+}
+
+json check(const std::string& file, const QSplineMotion& motion, const Geometry& geometry,
+           int grid) {
+  require_one(geometry, "check");
+  return check_geometry(file, motion, geometry.profile, geometry.point, grid);
+}
+
+ExportResult export_geometry(const AnyMotion& motion, const Geometry& geometry,
+                             const ExportOptions& opt) {
+  return std::visit([&](const auto& m) { return export_geometry(m, geometry, opt); }, motion);
+}
+
+json check(const std::string& file, const AnyMotion& motion, const Geometry& geometry, int grid) {
+  return std::visit([&](const auto& m) { return check(file, m, geometry, grid); }, motion);
 }
 
 }  // namespace qmotion::io

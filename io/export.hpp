@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <qmotion/io/motion_json.hpp>
+#include <qmotion/io/qspline.hpp>
 #include <qmotion/io/self_intersection.hpp>
 #include <qmotion/sweep/factors.hpp>
 #include <qmotion/sweep/nurbs.hpp>
@@ -14,9 +15,15 @@
 
 namespace qmotion::io {
 
+/// The degree of the fitted geometry of a quaternion-spline motion unless --max-degree
+/// gives one: error O(h^6), C4 between the motion's keys.
+inline constexpr int kQSplineFitDegree = 5;
+
 struct ExportOptions {
-  std::string output;        ///< .json, .step/.stp, .igs/.iges (surfaces also .stl)
-  int max_degree = -1;       ///< approximate above this degree (-1: exact only)
+  std::string output;  ///< .json, .step/.stp, .igs/.iges (surfaces also .stl)
+  /// Approximate above this degree (-1: exact only); for a quaternion-spline motion, the
+  /// degree of the fit (default kQSplineFitDegree).
+  int max_degree = -1;
   double tol = -1;           ///< approximation tolerance (absolute; default 1e-6 x diagonal)
   std::string units;         ///< the unit to convert into and declare (default: the motion's)
   bool single_face = false;  ///< surfaces: one face per profile edge, not split at C0 knots
@@ -33,7 +40,9 @@ struct ExportResult {
   std::string path;
   int degree_u = 0, degree_v = 0;
   int inserted_knots = 0;                  ///< for positive weights
-  std::optional<double> approx_deviation;  ///< set when --max-degree approximated
+  std::optional<double> approx_deviation;  ///< set when approximated (--max-degree, qspline)
+  std::optional<double> approx_tolerance;  ///< the tolerance it was held to
+  int approx_spans = 0;                    ///< quaternion splines: knot spans of the fit
   double min_weight = 0;
   int continuity_u = 0, continuity_v = 0;  ///< lowest continuity the knots declare
   int faces = 1;                           ///< faces written (STEP/IGES shells)
@@ -97,6 +106,44 @@ ExportResult export_geometry(const kernel::Motion<double>& motion, const Geometr
 /// check_geometry for the geometry's point or profile.
 nlohmann::json check(const std::string& file, const kernel::Motion<double>& motion,
                      const Geometry& geometry, int grid = 41);
+
+/// Non-rational motions (SPEC §3): the same calls for a quaternion-spline motion. Its
+/// geometry is approximated: the rigid maps [R(t) | p(t)] are fitted once by a matrix
+/// B-spline of degree opt.max_degree (default kQSplineFitDegree) on one knot vector holding
+/// the keys' knots (sweep::fit_frames), until the trajectories of the point, or of every
+/// control point of the profile, are within opt.tol (default 1e-6 of their bounding-box
+/// diagonal) on a dense grid; the surfaces, convex combinations of those, are within it
+/// too. ExportResult and the JSON's "approximation" record the tolerance, the measured
+/// deviation, the degree, the poles and the spans. --solid checks the fitted surface for
+/// back-sweep and takes the volume from the motion itself. Errc::numerical_failure when the
+/// fit cannot reach the tolerance (65536 spans).
+sweep::NurbsCurve<double> trajectory_nurbs(const QSplineMotion& motion,
+                                           const Eigen::Vector3d& point,
+                                           const ExportOptions& opt = {},
+                                           ExportResult* result = nullptr);
+std::vector<sweep::NurbsSurface<double>> sweep_nurbs(const QSplineMotion& motion,
+                                                     const sweep::Profile<double>& profile,
+                                                     const ExportOptions& opt = {},
+                                                     ExportResult* result = nullptr);
+ExportResult export_trajectory(const QSplineMotion& motion, const Eigen::Vector3d& point,
+                               const ExportOptions& opt);
+ExportResult export_surface(const QSplineMotion& motion, const sweep::Profile<double>& profile,
+                            const std::string& profile_name, const ExportOptions& opt);
+ExportResult export_geometry(const QSplineMotion& motion, const Geometry& geometry,
+                             const ExportOptions& opt);
+/// check_geometry against the quaternion spline itself (exp and log of its quaternions), not
+/// against the fit: the deviation is the written file's from the exact non-rational motion.
+nlohmann::json check_geometry(const std::string& file, const QSplineMotion& motion,
+                              const std::optional<sweep::Profile<double>>& profile,
+                              const std::optional<Eigen::Vector3d>& point, int grid = 41);
+nlohmann::json check(const std::string& file, const QSplineMotion& motion, const Geometry& geometry,
+                     int grid = 41);
+
+/// Either kind of motion, as load_any_motion reads it.
+ExportResult export_geometry(const AnyMotion& motion, const Geometry& geometry,
+                             const ExportOptions& opt);
+nlohmann::json check(const std::string& file, const AnyMotion& motion, const Geometry& geometry,
+                     int grid = 41);
 
 /// Parses "x,y,z" given to `flag`.
 Eigen::Vector3d parse_point(const std::string& text, const std::string& flag);

@@ -275,9 +275,9 @@ MotionFile parse_motion(const json& doc, const std::string& source) {
     throw Error(
         Errc::invalid_input,
         source +
-            ": type \"quaternion-spline\" (non-rational motion) is not supported by this command "
-            "yet (info and eval read it; its trajectories and sweeps, approximations, are not "
-            "built yet)");
+            ": type \"quaternion-spline\" is a non-rational motion and this needs a rational "
+            "q-motion (info, eval, trajectory, sweep and check read both kinds; check --exact "
+            "verifies rational motions only)");
   if (type != "q-motion")
     throw Error(Errc::invalid_input,
                 source + ": type: expected \"q-motion\", found " + type.dump());

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <qmotion/io/atomic_file.hpp>
+#include <qmotion/io/compare.hpp>
 #include <qmotion/io/demo.hpp>
 #include <qmotion/io/export.hpp>
 #include <qmotion/io/interpolate.hpp>

@@ -3,7 +3,9 @@
 #include <qmotion/io/interpolate.hpp>
 #include <qmotion/io/json_number.hpp>
 #include <qmotion/io/motion_info.hpp>
+#include <qmotion/io/motion_json.hpp>
 #include <qmotion/io/qspline.hpp>
+#include <qmotion/io/units.hpp>
 #include <qmotion/kernel/error.hpp>
 #include <qmotion/kernel/parametrization.hpp>
 #include <qmotion/kernel/pose.hpp>
@@ -162,6 +164,7 @@ QSplineMotion qspline(const PoseSet& set, const QSplineOptions& o) {
   method["input_poses"] = poses_to_json(set);
   doc["method"] = method;
   out.document = doc;
+  out.units = set.units;
 
   std::ostringstream os;
   os << kernel::to_string(s.scheme) << ", " << s.segments() << " segments";
@@ -230,6 +233,36 @@ kernel::QuaternionSpline qspline_from_document(const json& doc, const std::strin
   s.fixed_point_residual = get("fixed_point_residual");
   s.newton_steps = static_cast<int>(get("newton_steps"));
   return s;
+}
+
+QSplineMotion qspline_motion(const json& doc, const std::string& source) {
+  QSplineMotion m;
+  m.spline = qspline_from_document(doc, source);
+  m.document = doc;
+  m.name = source;
+  if (doc.contains("units")) {
+    if (!doc["units"].is_string())
+      throw Error(Errc::invalid_input, source + ": units: expected a unit name such as \"mm\"");
+    m.units = canonical_unit(doc["units"].get<std::string>(), source + ": units");
+  }
+  m.summary = std::string(kernel::to_string(m.spline.scheme)) + ", " +
+              std::to_string(m.spline.segments()) + " segments";
+  return m;
+}
+
+AnyMotion load_any_motion(const std::string& path) {
+  const std::string text = read_text_file(path);
+  const json doc = parse_json(text, path);
+  if (is_qspline_document(doc)) {
+    QSplineMotion m = qspline_motion(doc, path);
+    m.document = json::parse(text, nullptr, false);  // as written: numbers as numbers
+    return m;
+  }
+  return to_motion(parse_motion_text(text, path));
+}
+
+const std::string& units_of(const AnyMotion& m) {
+  return std::visit([](const auto& x) -> const std::string& { return x.units; }, m);
 }
 
 json qspline_info(const json& doc, const kernel::QuaternionSpline& s) {

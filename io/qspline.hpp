@@ -4,8 +4,10 @@
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 #include <qmotion/io/poses.hpp>
+#include <qmotion/kernel/motion_value.hpp>
 #include <qmotion/kernel/qspline.hpp>
 #include <string>
+#include <variant>
 
 namespace qmotion::io {
 
@@ -16,11 +18,17 @@ struct QSplineOptions {
   std::string param;    ///< a rule of `interpolate` (default: given when every pose has t)
 };
 
-/// A new quaternion spline: the spline, its file document and a one-line summary.
+/// A quaternion-spline motion as a value: the spline, its file document, a one-line
+/// summary, its length unit and where it came from (a file name; empty when built here).
 struct QSplineMotion {
   kernel::QuaternionSpline spline;
   nlohmann::json document;
   std::string summary;
+  std::string units = "mm";
+  std::string name;
+
+  /// The name for messages: the file name, or "motion" for one built in memory.
+  std::string label() const { return name.empty() ? std::string("motion") : name; }
 };
 
 /// The spline of the scheme through the poses (rotations and positions). The parameters of
@@ -38,6 +46,19 @@ bool is_qspline_document(const nlohmann::json& doc);
 /// field.
 kernel::QuaternionSpline qspline_from_document(const nlohmann::json& doc,
                                                const std::string& source);
+
+/// The motion a quaternion-spline document describes (qspline_from_document, with its unit
+/// checked), named `source`.
+QSplineMotion qspline_motion(const nlohmann::json& doc, const std::string& source);
+
+/// A motion file of either kind: a rational q-motion or a quaternion spline.
+using AnyMotion = std::variant<kernel::Motion<double>, QSplineMotion>;
+
+/// Reads a motion file of either kind (SPEC §5), refusals naming the file and field.
+AnyMotion load_any_motion(const std::string& path);
+
+/// The length unit of either kind.
+const std::string& units_of(const AnyMotion& m);
 
 /// `info` for a quaternion-spline file: type, scheme, basis, degree and order (null: not
 /// rational), segments, param_range, units, plucker_residual (0: rotation and translation are

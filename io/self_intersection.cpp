@@ -39,17 +39,36 @@ std::string SelfIntersection::ranges() const {
 
 SelfIntersection sweep_self_intersections(const kernel::Motion<double>& motion,
                                           const sweep::Profile<double>& profile, int samples_t) {
+  return sweep_self_intersections(
+      [&](double t, const Eigen::Vector3d& x) {
+        return kernel::apply_point(kernel::evaluate(motion, t), x);
+      },
+      motion.a(), motion.b(), motion.segments(), profile, samples_t);
+}
+
+SelfIntersection sweep_self_intersections(const kernel::QuaternionSpline& motion,
+                                          const sweep::Profile<double>& profile, int samples_t) {
+  return sweep_self_intersections(
+      [&](double t, const Eigen::Vector3d& x) {
+        return Eigen::Vector3d(kernel::rotate(motion.rotation(t), x) + motion.position(t));
+      },
+      motion.a(), motion.b(), motion.segments(), profile, samples_t);
+}
+
+SelfIntersection sweep_self_intersections(
+    const std::function<Eigen::Vector3d(double, const Eigen::Vector3d&)>& place, double a, double b,
+    int segments, const sweep::Profile<double>& profile, int samples_t) {
   SelfIntersection out;
   if (profile.edges.empty()) return out;
-  const int nt = samples_t > 0 ? samples_t : std::clamp(16 * motion.segments(), 64, 2000);
+  const int nt = samples_t > 0 ? samples_t : std::clamp(16 * segments, 64, 2000);
   // Profile samples, the point shared by consecutive edges taken once.
   std::vector<ProfileSample> prof;
   for (std::size_t e = 0; e < profile.edges.size(); ++e) {
     const auto& c = profile.edges[e];
     const int nv = std::max(16, 8 * c.degree);
-    const double a = c.knots.front(), b = c.knots.back();
+    const double v0 = c.knots.front(), v1 = c.knots.back();
     for (int j = (e == 0 ? 0 : 1); j <= nv; ++j) {
-      const double v = a + (b - a) * j / nv;
+      const double v = v0 + (v1 - v0) * j / nv;
       prof.push_back({e, v, sweep::evaluate(c, v)});
     }
   }
@@ -64,11 +83,10 @@ SelfIntersection sweep_self_intersections(const kernel::Motion<double>& motion,
   // a fixed rotation axis) are one vertex: triangles meeting there touch, they do not cross.
   std::map<std::array<double, 3>, Vertex> seen;
   for (int i = 0; i <= nt; ++i) {
-    const double t = motion.a() + (motion.b() - motion.a()) * i / nt;
+    const double t = a + (b - a) * i / nt;
     ts.push_back(t);
-    const auto q = kernel::evaluate(motion, t);
     for (const auto& s : prof) {
-      const Eigen::Vector3d y = kernel::apply_point(q, s.x);
+      const Eigen::Vector3d y = place(t, s.x);
       const std::array<double, 3> key{y(0), y(1), y(2)};
       const auto it = seen.find(key);
       if (it != seen.end()) {

@@ -1,6 +1,9 @@
 // io/self_intersection.hpp: does a kinematic sweep intersect itself? (CGAL mesh check)
 #pragma once
+#include <Eigen/Core>
+#include <functional>
 #include <qmotion/kernel/motion_value.hpp>
+#include <qmotion/kernel/qspline.hpp>
 #include <qmotion/sweep/profiles.hpp>
 #include <string>
 #include <vector>
@@ -32,5 +35,13 @@ struct SelfIntersection {
 /// 2000; each edge gets 8 per degree (at least 16).
 SelfIntersection sweep_self_intersections(const kernel::Motion<double>& motion,
                                           const sweep::Profile<double>& profile, int samples_t = 0);
+/// The same for a quaternion-spline motion (its exact poses, not a fit).
+SelfIntersection sweep_self_intersections(const kernel::QuaternionSpline& motion,
+                                          const sweep::Profile<double>& profile, int samples_t = 0);
+/// The same for any motion given by the image place(t, x) of the point x at t in [a, b],
+/// with `segments` its polynomial (or key-to-key) segments for the default sampling.
+SelfIntersection sweep_self_intersections(
+    const std::function<Eigen::Vector3d(double, const Eigen::Vector3d&)>& place, double a, double b,
+    int segments, const sweep::Profile<double>& profile, int samples_t = 0);
 
 }  // namespace qmotion::io

@@ -154,18 +154,23 @@ struct BacksweepResult {
   bool flip = false;        ///< the region moves against its normal
 };
 
-inline BacksweepResult find_backsweep(const Motion<double>& m, const Profile<double>& p,
-                                      const PlanarRegion& region) {
-  using V4 = Eigen::Vector4d;
-  using V3 = Eigen::Vector3d;
-  std::vector<V4> X;
+/// The homogeneous control points (w, w x) of every edge of the profile, in order.
+inline std::vector<Eigen::Vector4d> homogeneous_points(const Profile<double>& p) {
+  std::vector<Eigen::Vector4d> X;
   for (const auto& e : p.edges)
     for (std::size_t j = 0; j < e.points.size(); ++j)
       X.emplace_back(e.weights[j], e.weights[j] * e.points[j](0), e.weights[j] * e.points[j](1),
                      e.weights[j] * e.points[j](2));
-  const auto cols = trajectories(m, X);
-  const auto nh =
-      trajectories(m, {V4(0, region.normal(0), region.normal(1), region.normal(2))}).front();
+  return X;
+}
+
+/// find_backsweep from the homogeneous trajectories `cols` of the profile's control points
+/// and `nh` of the region's normal (a direction, weight 0), as any motion (rational, or a
+/// fitted matrix spline) gives them.
+inline BacksweepResult find_backsweep(const std::vector<kernel::BSpline<Eigen::Vector4d>>& cols,
+                                      const kernel::BSpline<Eigen::Vector4d>& nh) {
+  using V4 = Eigen::Vector4d;
+  using V3 = Eigen::Vector3d;
   std::vector<double> x = cols.front().breakpoints();
   for (double v : nh.breakpoints()) x.push_back(v);
   std::sort(x.begin(), x.end());
@@ -221,6 +226,12 @@ inline BacksweepResult find_backsweep(const Motion<double>& m, const Profile<dou
   }
   r.t = first;
   return r;
+}
+
+inline BacksweepResult find_backsweep(const Motion<double>& m, const Profile<double>& p,
+                                      const PlanarRegion& region) {
+  const Eigen::Vector4d n(0, region.normal(0), region.normal(1), region.normal(2));
+  return find_backsweep(trajectories(m, homogeneous_points(p)), trajectories(m, {n}).front());
 }
 
 /// The volume a planar region sweeps when it never sweeps back over itself:

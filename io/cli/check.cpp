@@ -58,14 +58,14 @@ Command add_check(CLI::App& app) {
               throw Error(Errc::invalid_input, "check: GEOMETRY is required (or use --exact)");
             if (o->profile.empty() == o->point.empty())
               throw Error(Errc::invalid_input, "check: give exactly one of --profile and --point");
-            const kernel::Motion<double> lm = io::load_motion(o->motion);
-            std::optional<sweep::Profile<double>> profile;
-            std::optional<Eigen::Vector3d> point;
-            if (!o->profile.empty()) profile = io::read_profile(o->profile, lm.units);
-            if (!o->point.empty()) point = io::parse_point(o->point, "--point");
+            const io::AnyMotion m = io::load_any_motion(o->motion);
             if (o->grid < 1 || o->grid > 1000)
               throw Error(Errc::invalid_input, "--grid: expected 1 to 1000");
-            std::cout << io::check_geometry(o->file, lm, profile, point, o->grid).dump(2) << "\n";
+            const io::Geometry g =
+                o->profile.empty() ? io::Geometry::trajectory(io::parse_point(o->point, "--point"))
+                                   : io::Geometry::sweep(
+                                         io::read_profile(o->profile, io::units_of(m)), o->profile);
+            std::cout << io::check(o->file, m, g, o->grid).dump(2) << "\n";
             return 0;
           }};
 }

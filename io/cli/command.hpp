@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <functional>
 #include <qmotion/io/export.hpp>
+#include <sstream>
 #include <string>
 
 namespace qmotion::cli {
@@ -18,20 +19,25 @@ struct Command {
 /// --tol, --units.
 inline void add_geometry_options(CLI::App* sub, io::ExportOptions& o) {
   sub->add_option("--max-degree", o.max_degree,
-                  "Approximate along the motion (measured, within --tol) above degree D");
-  sub->add_option(
-      "--tol", o.tol,
-      "Approximation tolerance in length units (default 1e-6 of the bounding-box diagonal)");
+                  "Approximate along the motion (measured, within --tol) above degree D; for a "
+                  "quaternion-spline motion, the degree of its fitted geometry (default 5)");
+  sub->add_option("--tol", o.tol,
+                  "Approximation tolerance in the motion's length unit (default 1e-6 of the "
+                  "bounding-box diagonal)");
   sub->add_option("--units", o.units,
                   "Convert the numbers from the motion's unit into U and declare U: mm, cm, m, "
                   "um, in, ft (default: the motion's)");
 }
 
-/// ", approximation with measured deviation D" when the export approximated, else "".
+/// ", approximated: measured deviation D within tolerance T" when the export approximated,
+/// else "".
 inline std::string approximation_note(const io::ExportResult& r) {
-  return r.approx_deviation
-             ? ", approximation with measured deviation " + std::to_string(*r.approx_deviation)
-             : std::string();
+  if (!r.approx_deviation) return std::string();
+  std::ostringstream os;
+  os.precision(3);
+  os << ", approximated: measured deviation " << *r.approx_deviation;
+  if (r.approx_tolerance) os << " within tolerance " << *r.approx_tolerance;
+  return os.str();
 }
 
 Command add_info(CLI::App& app);
@@ -43,6 +49,7 @@ Command add_sweep(CLI::App& app);
 Command add_check(CLI::App& app);
 Command add_demo(CLI::App& app);
 Command add_qspline(CLI::App& app);
+Command add_compare(CLI::App& app);
 
 /// Runs the qmotion command line; returns the exit status of SPEC §6. Throws
 /// qmotion::Error for user-facing failures (main maps them to their exit status).

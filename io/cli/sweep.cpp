@@ -12,7 +12,8 @@ namespace qmotion::cli {
 Command add_sweep(CLI::App& app) {
   auto* sub = app.add_subcommand(
       "sweep",
-      "Write the kinematic surface M(t) x(v) of a profile as NURBS (JSON, STEP, IGES; STL mesh)");
+      "Write the kinematic surface M(t) x(v) of a profile as NURBS (JSON, STEP, IGES; STL mesh): "
+      "exact for a q-motion, fitted within --tol for a quaternion spline");
   struct Options {
     std::string motion, profile;
     io::ExportOptions options;
@@ -37,9 +38,10 @@ Command add_sweep(CLI::App& app) {
                 "Closed planar profile: add planar caps at both ends and write one closed solid");
   return {
       sub, [o] {
-        const kernel::Motion<double> lm = io::load_motion(o->motion);
-        const auto profile = io::read_profile(o->profile, lm.units);
-        const auto r = io::export_surface(lm, profile, o->profile, o->options);
+        const io::AnyMotion m = io::load_any_motion(o->motion);
+        const auto r = io::export_geometry(
+            m, io::Geometry::sweep(io::read_profile(o->profile, io::units_of(m)), o->profile),
+            o->options);
         if (r.self_intersection && r.self_intersection->found())
           std::cerr << "qmotion: warning: the sweep intersects itself ("
                     << r.self_intersection->pairs << " crossing triangle pairs; "

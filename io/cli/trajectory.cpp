@@ -10,7 +10,9 @@ namespace qmotion::cli {
 
 Command add_trajectory(CLI::App& app) {
   auto* sub = app.add_subcommand(
-      "trajectory", "Write the exact rational trajectory of a point as NURBS (JSON, STEP or IGES)");
+      "trajectory",
+      "Write the trajectory of a point as NURBS (JSON, STEP or IGES): exact and rational for a "
+      "q-motion, fitted within --tol for a quaternion spline");
   struct Options {
     std::string motion, point;
     io::ExportOptions options;
@@ -22,8 +24,9 @@ Command add_trajectory(CLI::App& app) {
       ->required();
   add_geometry_options(sub, o->options);
   return {sub, [o] {
-            const auto r = io::export_trajectory(io::load_motion(o->motion),
-                                                 io::parse_point(o->point, "--point"), o->options);
+            const auto r = io::export_geometry(
+                io::load_any_motion(o->motion),
+                io::Geometry::trajectory(io::parse_point(o->point, "--point")), o->options);
             std::cerr << "qmotion: wrote " << r.path << " (degree " << r.degree_u << ", C"
                       << r.continuity_u << ", " << r.poles << " poles, " << r.units << ", "
                       << r.inserted_knots << " knots inserted for positive weights"

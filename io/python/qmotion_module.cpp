@@ -106,12 +106,12 @@ qm::sweep::Profile<double> to_profile(const py::handle& p, const std::string& un
 }
 
 /// The point or profile of an export or check call (both or neither: the library refuses).
-qm::io::Geometry to_geometry(const PyMotion& m, const py::object& profile,
+qm::io::Geometry to_geometry(const std::string& units, const py::object& profile,
                              const py::object& point) {
   qm::io::Geometry g;
   if (!point.is_none()) g.point = vec3(point, "point");
   if (!profile.is_none()) {
-    g.profile = to_profile(profile, m.motion.units);
+    g.profile = to_profile(profile, units);
     if (py::isinstance<py::str>(profile)) g.profile_name = profile.cast<std::string>();
   }
   return g;
@@ -139,6 +139,7 @@ json result_json(const qm::io::ExportResult& r) {
          {"continuity_u", r.continuity_u},
          {"continuity_v", r.continuity_v}};
   if (r.approx_deviation) j["approximation_deviation"] = *r.approx_deviation;
+  if (r.approx_tolerance) j["approximation_tolerance"] = *r.approx_tolerance;
   if (r.volume) j["volume"] = *r.volume;
   if (r.self_intersection) {
     j["self_intersecting"] = r.self_intersection->found();
@@ -317,16 +318,22 @@ PYBIND11_MODULE(qmotion, m) {
 
   m.def(
       "load",
-      [](const std::string& path) {
+      [](const std::string& path) -> py::object {
+        {
+          auto any = qm::io::load_any_motion(path);
+          if (auto* q = std::get_if<qm::io::QSplineMotion>(&any)) return py::cast(std::move(*q));
+        }
         qm::io::MotionFile file = qm::io::read_motion(path);
         qm::kernel::Motion<double> motion = qm::io::to_motion(file);
         std::ifstream in(path, std::ios::binary);
         std::stringstream text;
         text << in.rdbuf();
         json document = json::parse(text.str());  // as written (numbers as numbers)
-        return PyMotion{std::move(file), std::move(motion), std::move(document)};
+        return py::cast(PyMotion{std::move(file), std::move(motion), std::move(document)});
       },
-      py::arg("path"), "Reads a motion file written by `qmotion interpolate` or `save`.");
+      py::arg("path"),
+      "Reads a motion file written by `qmotion interpolate`, `qmotion qspline` or `save`: a "
+      "Motion, or a QSpline for a quaternion-spline file.");
 
   m.def(
       "interpolate",
@@ -395,8 +402,8 @@ PYBIND11_MODULE(qmotion, m) {
          const py::object& point, int max_degree, double tol, const std::string& units,
          bool single_face, bool solid) {
         const auto opt = export_options(path, max_degree, tol, units, single_face, solid);
-        return to_python(
-            result_json(qm::io::export_geometry(p.motion, to_geometry(p, profile, point), opt)));
+        return to_python(result_json(
+            qm::io::export_geometry(p.motion, to_geometry(p.motion.units, profile, point), opt)));
       },
       py::arg("motion"), py::arg("path"), py::arg("profile") = py::none(),
       py::arg("point") = py::none(), py::arg("max_degree") = -1, py::arg("tol") = -1.0,
@@ -417,13 +424,148 @@ PYBIND11_MODULE(qmotion, m) {
       "check",
       [](const std::string& path, const PyMotion& p, const py::object& profile,
          const py::object& point, int grid) {
-        return to_python(qm::io::check(path, p.motion, to_geometry(p, profile, point), grid));
+        return to_python(
+            qm::io::check(path, p.motion, to_geometry(p.motion.units, profile, point), grid));
       },
       py::arg("path"), py::arg("motion"), py::arg("profile") = py::none(),
       py::arg("point") = py::none(), py::arg("grid") = 41,
       "The exactness check of `qmotion check`: the file's NURBS (STEP/IGES read through "
       "OpenCASCADE) against the motion applied to the profile or point. A dict with "
       "max_deviation, relative_deviation, weights_positive, valid, faces, closed, volume, ...");
+
+  py::class_<qm::io::QSplineMotion>(
+      m, "QSpline",
+      "A non-rational quaternion-spline motion (SPEC §3): kks, quintic or quartic. Its "
+      "trajectories and sweeps are fitted within a tolerance (trajectory, sweep, export) and "
+      "checked against the spline itself (check).")
+      .def_property_readonly("scheme",
+                             [](const qm::io::QSplineMotion& q) {
+                               return std::string(qm::kernel::to_string(q.spline.scheme));
+                             })
+      .def_property_readonly("units", [](const qm::io::QSplineMotion& q) { return q.units; })
+      .def_property_readonly(
+          "param_range",
+          [](const qm::io::QSplineMotion& q) { return std::make_pair(q.spline.a(), q.spline.b()); })
+      .def_property_readonly("knots", [](const qm::io::QSplineMotion& q) { return q.spline.knots; })
+      .def(
+          "evaluate",
+          [](const qm::io::QSplineMotion& q, double t, const py::object& point) {
+            const Eigen::Vector3d x =
+                point.is_none() ? Eigen::Vector3d::Zero() : vec3(point, "point");
+            return to_python(qm::io::qspline_eval(q.spline, t, x, std::to_string(t)));
+          },
+          py::arg("t"), py::arg("point") = py::none(),
+          "`qmotion eval`: position, quaternion, the image of point, angular velocity at t.")
+      .def(
+          "info",
+          [](const qm::io::QSplineMotion& q) {
+            return to_python(qm::io::qspline_info(q.document, q.spline));
+          },
+          "The `qmotion info` report: scheme, segments, knots, residuals, and for kks the "
+          "iteration's figures.")
+      .def(
+          "to_dict", [](const qm::io::QSplineMotion& q) { return to_python(q.document); },
+          "The quaternion-spline file's document as a dict")
+      .def(
+          "save",
+          [](const qm::io::QSplineMotion& q, const std::string& path) {
+            qm::io::write_file_atomic(path, q.document.dump(1) + "\n");
+          },
+          py::arg("path"), "Writes the motion file, as `qmotion qspline` does");
+
+  m.def(
+      "qspline",
+      [](const py::object& poses, const std::string& scheme, const py::object& tension,
+         const std::string& param, const std::string& units) {
+        qm::io::QSplineOptions o;
+        o.scheme = scheme;
+        o.param = param;
+        if (!tension.is_none()) {
+          std::ostringstream os;
+          os.precision(17);
+          if (py::isinstance<py::float_>(tension) || py::isinstance<py::int_>(tension)) {
+            os << tension.cast<double>();
+          } else {
+            const auto a = tension.cast<std::vector<double>>();
+            for (std::size_t i = 0; i < a.size(); ++i) os << (i ? "," : "") << a[i];
+          }
+          o.tension = os.str();
+        }
+        return qm::io::qspline(to_poses(poses, units), o);
+      },
+      py::arg("poses"), py::arg("scheme"), py::arg("tension") = py::none(), py::arg("param") = "",
+      py::arg("units") = "mm",
+      "A unit-quaternion spline motion through the poses, as `qmotion qspline`:\n"
+      "  scheme: 'kks' (Kim-Kim-Shin C2, iterative) | 'quintic' (tension) | 'quartic'\n"
+      "  tension: quintic only, a number for every key or one per key (default 0.5)\n"
+      "  param: a rule of interpolate; kks and quartic put the keys at uniform knots.");
+
+  m.def(
+      "trajectory",
+      [](const qm::io::QSplineMotion& q, const py::object& point, int max_degree, double tol,
+         const std::string& units) {
+        return qm::io::trajectory_nurbs(q, vec3(point, "point"),
+                                        export_options("", max_degree, tol, units, false, false));
+      },
+      py::arg("motion"), py::arg("point"), py::arg("max_degree") = -1, py::arg("tol") = -1.0,
+      py::arg("units") = "",
+      "For a QSpline: the trajectory fitted within tol (default 1e-6 of its size) at degree "
+      "max_degree (default 5), a polynomial NurbsCurve parametrised by t.");
+
+  m.def(
+      "sweep",
+      [](const qm::io::QSplineMotion& q, const py::object& profile, int max_degree, double tol,
+         const std::string& units) {
+        return qm::io::sweep_nurbs(q, to_profile(profile, q.units),
+                                   export_options("", max_degree, tol, units, false, false));
+      },
+      py::arg("motion"), py::arg("profile"), py::arg("max_degree") = -1, py::arg("tol") = -1.0,
+      py::arg("units") = "",
+      "For a QSpline: the sweep of each profile edge fitted within tol (default 1e-6 of its "
+      "size) at degree max_degree (default 5) along t.");
+
+  m.def(
+      "export",
+      [](const qm::io::QSplineMotion& q, const std::string& path, const py::object& profile,
+         const py::object& point, int max_degree, double tol, const std::string& units,
+         bool single_face, bool solid) {
+        const auto opt = export_options(path, max_degree, tol, units, single_face, solid);
+        return to_python(
+            result_json(qm::io::export_geometry(q, to_geometry(q.units, profile, point), opt)));
+      },
+      py::arg("motion"), py::arg("path"), py::arg("profile") = py::none(),
+      py::arg("point") = py::none(), py::arg("max_degree") = -1, py::arg("tol") = -1.0,
+      py::arg("units") = "", py::arg("single_face") = false, py::arg("solid") = false,
+      "For a QSpline: as for a Motion, the geometry fitted within tol; the dict adds "
+      "approximation_deviation and approximation_tolerance.");
+
+  m.def(
+      "check",
+      [](const std::string& path, const qm::io::QSplineMotion& q, const py::object& profile,
+         const py::object& point, int grid) {
+        return to_python(qm::io::check(path, q, to_geometry(q.units, profile, point), grid));
+      },
+      py::arg("path"), py::arg("motion"), py::arg("profile") = py::none(),
+      py::arg("point") = py::none(), py::arg("grid") = 41,
+      "For a QSpline: the file against the spline itself (exp and log), not the fit.");
+
+  m.def(
+      "compare",
+      [](const py::object& poses, const std::string& param, const py::object& point,
+         const std::string& profile, double tol, const std::string& units) {
+        qm::io::CompareOptions o;
+        o.param = param;
+        if (!point.is_none()) o.point = vec3(point, "point");
+        o.profile = profile;
+        o.rel_tol = tol;
+        return to_python(qm::io::to_json(qm::io::compare_schemes(to_poses(poses, units), o)));
+      },
+      py::arg("poses"), py::arg("param") = "", py::arg("point") = py::none(),
+      py::arg("profile") = "", py::arg("tol") = 1e-6, py::arg("units") = "mm",
+      "`qmotion compare`: for elliptic bspline, c1, kks, quintic and quartic through the "
+      "poses, a list of dicts: max_angular_velocity, max_angular_acceleration, "
+      "trajectory_length (of point), sweep_poles (exact, or fitted within tol of the sweep's "
+      "size), sweep_deviation, max_key_residual; or error.");
 
 #ifdef QMOTION_WITH_CGAL
   m.def(

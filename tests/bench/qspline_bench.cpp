@@ -2,10 +2,13 @@
 // and 10^4 keys (linear growth expected), and orientations evaluated per second.
 // The papers' Matlab figures: KKS 0.36 s for 401 frames, quintic 0.087 s for 401 frames,
 // quartic 0.054 s for 101 frames (BM_Frames: build from 10 keys, then evaluate the frames).
+// BM_Fit: the fitted geometry (sweep::fit_frames, degree 5) of a 10-key spline for the
+// corners of a 2 x 1 rectangle, at 1e-3, 1e-6 and 1e-9 of the size; counters: poles, spans.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
 #include <qmotion/kernel/qspline.hpp>
+#include <qmotion/sweep/fit.hpp>
 #include <vector>
 
 namespace {
@@ -74,6 +77,23 @@ void BM_Frames(benchmark::State& state) {
   state.SetLabel(kNames[state.range(0)]);
 }
 BENCHMARK(BM_Frames)->Args({0, 401})->Args({1, 401})->Args({2, 101})->Unit(benchmark::kMicrosecond);
+
+void BM_Fit(benchmark::State& state) {
+  const QuaternionSpline s = build(static_cast<int>(state.range(0)), keys(10));
+  std::vector<int> continuity;
+  for (std::size_t k = 1; k + 1 < s.knots.size(); ++k) continuity.push_back(s.continuity(k));
+  const std::vector<Eigen::Vector3d> corners{{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {0, 1, 0}};
+  qmotion::sweep::FrameFitOptions o;
+  o.tol = std::pow(10.0, -static_cast<double>(state.range(1))) * 10;  // the size is about 10
+  qmotion::sweep::FrameFit f;
+  for (auto _ : state)
+    f = qmotion::sweep::fit_frames([&](double t) { return s.frame(t); }, s.knots, continuity,
+                                   corners, o);
+  state.counters["poles"] = static_cast<double>(f.matrix.ctrl().size());
+  state.counters["spans"] = f.spans;
+  state.SetLabel(std::string(kNames[state.range(0)]) + " tol 1e-" + std::to_string(state.range(1)));
+}
+BENCHMARK(BM_Fit)->ArgsProduct({{0, 1, 2}, {3, 6, 9}})->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 

@@ -436,6 +436,83 @@ TEST(Cli, QsplineMotionsInterpolateThePosesThroughInfoAndEval) {
   }
 }
 
+TEST(Cli, QsplineTrajectoriesAndSweepsAreApproximatedWithinTol) {
+  // Every scheme, every format: the message and the JSON state the tolerance, the measured
+  // deviation, the degree and the poles; check measures the written file against the motion
+  // itself.
+  for (const char* scheme : {"kks", "quintic", "quartic"}) {
+    SCOPED_TRACE(scheme);
+    const std::string m = (scratch_dir() / (std::string("qa_") + scheme + ".json")).string();
+    ASSERT_EQ(run({"qspline", test_data("helix_10.json"), "-o", m, "--scheme", scheme}).status, 0);
+    for (const char* ext : {".json", ".step", ".igs"}) {
+      SCOPED_TRACE(ext);
+      const std::string traj = (scratch_dir() / (std::string("qa_traj") + ext)).string();
+      const Result t = run({"trajectory", m, "--point", "1,-2,0.5", "-o", traj, "--tol", "1e-5"});
+      ASSERT_EQ(t.status, 0) << t.err;
+      EXPECT_NE(t.err.find("degree 5"), std::string::npos) << t.err;
+      EXPECT_NE(t.err.find("within tolerance 1e-05"), std::string::npos) << t.err;
+      const json ct = run_json({"check", traj, "--motion", m, "--point", "1,-2,0.5"});
+      EXPECT_LE(ct["max_deviation"].get<double>(), 1e-5) << ct.dump();
+      EXPECT_NE(ct["motion"].get<std::string>().find("quaternion-spline"), std::string::npos);
+      const std::string surf = (scratch_dir() / (std::string("qa_surf") + ext)).string();
+      const Result s = run({"sweep", m, "--profile", "arc:2,0,1.5", "-o", surf, "--tol", "1e-4"});
+      ASSERT_EQ(s.status, 0) << s.err;
+      EXPECT_NE(s.err.find("poles"), std::string::npos) << s.err;
+      const json cs = run_json({"check", surf, "--motion", m, "--profile", "arc:2,0,1.5"});
+      EXPECT_LE(cs["max_deviation"].get<double>(), 1e-4) << cs.dump();
+      if (std::string(ext) == ".json") {
+        const json doc = json::parse(slurp(surf));
+        EXPECT_EQ(doc["approximation"]["tolerance"].get<double>(), 1e-4);
+        EXPECT_LE(doc["approximation"]["measured_deviation"].get<double>(), 1e-4);
+        EXPECT_EQ(doc["approximation"]["degree"].get<int>(), 5);
+        EXPECT_GT(doc["approximation"]["poles_per_curve"].get<int>(), 5);
+      }
+    }
+  }
+  // --max-degree sets the fitted degree.
+  const std::string m = (scratch_dir() / "qa_kks.json").string();
+  const std::string c3 = (scratch_dir() / "qa_cubic.json").string();
+  ASSERT_EQ(run({"trajectory", m, "--point", "0,0,0", "-o", c3, "--max-degree", "3"}).status, 0);
+  EXPECT_EQ(json::parse(slurp(c3))["degree"].get<int>(), 3);
+}
+
+TEST(Cli, CompareMeasuresEverySchemeOnOneInterval) {
+  const json figures =
+      run_json({"compare", test_data("helix_10.json"), "--json", "--point", "2,0,0"});
+  ASSERT_EQ(figures.size(), 5u);
+  const std::vector<std::string> names{"elliptic bspline", "c1", "kks", "quintic", "quartic"};
+  double shortest = HUGE_VAL, longest = 0;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const json& f = figures[i];
+    EXPECT_EQ(f["scheme"], names[i]);
+    ASSERT_FALSE(f.contains("error")) << f.dump();
+    EXPECT_EQ(f["rational"].get<bool>(), i < 2);
+    EXPECT_GT(f["max_angular_velocity"].get<double>(), 0);
+    EXPECT_GT(f["sweep_poles"].get<int>(), 0);
+    EXPECT_LE(f["max_key_residual"].get<double>(), 1e-10);
+    if (i >= 2) {
+      EXPECT_GT(f["sweep_deviation"].get<double>(), 0);
+    }
+    shortest = std::min(shortest, f["trajectory_length"].get<double>());
+    longest = std::max(longest, f["trajectory_length"].get<double>());
+  }
+  // Every scheme passes through the same ten poses: the lengths differ by a few percent.
+  EXPECT_LE(longest, 1.1 * shortest);
+  const Result table = run({"compare", test_data("helix_10.json")});
+  ASSERT_EQ(table.status, 0) << table.err;
+  for (const auto& n : names) EXPECT_NE(table.out.find(n), std::string::npos) << table.out;
+  // Bad options are exit 2.
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"compare", test_data("helix_10.json"), "--tol", "2"},
+        std::vector<std::string>{"compare", test_data("helix_10.json"), "--param", "sideways"},
+        std::vector<std::string>{"compare", test_data("helix_10.json"), "--point", "1,2"},
+        std::vector<std::string>{"compare", test_data("helix_10.json"), "--profile",
+                                 "circle:-1"}}) {
+    const Result r = run(args);
+    EXPECT_EQ(r.status, 2) << r.err;
+  }
+}
+
 TEST(Cli, QsplineBadInputsExitWithTheirStatusAndLeaveNoFile) {
   const std::string out = (scratch_dir() / "q_bad.json").string();
   const fs::path half = scratch_dir() / "half_turn_keys.json";
@@ -488,16 +565,26 @@ TEST(Cli, QsplineBadInputsExitWithTheirStatusAndLeaveNoFile) {
     EXPECT_NE(r.err.find(c.needle), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(out));
   }
-  // info --exact is for rational motions; trajectories of quaternion splines are not built yet.
+  // info --exact and check --exact are for rational motions.
   const std::string ok = (scratch_dir() / "q_ok.json").string();
   ASSERT_EQ(run({"qspline", poses, "-o", ok, "--scheme", "quartic"}).status, 0);
   const Result exact = run({"info", "--exact", ok});
   EXPECT_EQ(exact.status, 2);
   EXPECT_NE(exact.err.find("not rational"), std::string::npos) << exact.err;
-  const std::string curve = (scratch_dir() / "q_curve.json").string();
-  const Result traj = run({"trajectory", ok, "--point", "1,2,3", "-o", curve});
-  EXPECT_EQ(traj.status, 2);
-  EXPECT_NE(traj.err.find("not supported by this command yet"), std::string::npos) << traj.err;
+  const Result check_exact = run({"check", "--exact", "--motion", ok});
+  EXPECT_EQ(check_exact.status, 2);
+  EXPECT_NE(check_exact.err.find("non-rational"), std::string::npos) << check_exact.err;
+  // A fit that cannot reach its tolerance (degree 1, 1e-12 of the size) is exit 3 and
+  // writes nothing; a degree below 1 is exit 2.
+  const std::string curve = (scratch_dir() / "q_curve.step").string();
+  const Result coarse = run(
+      {"trajectory", ok, "--point", "1,2,3", "-o", curve, "--max-degree", "1", "--tol", "1e-11"});
+  EXPECT_EQ(coarse.status, 3) << coarse.err;
+  EXPECT_NE(coarse.err.find("above the tolerance"), std::string::npos) << coarse.err;
+  EXPECT_FALSE(fs::exists(curve));
+  const Result zero = run({"sweep", ok, "--profile", "rect:1,2", "-o", curve, "--max-degree", "0"});
+  EXPECT_EQ(zero.status, 2) << zero.err;
+  EXPECT_NE(zero.err.find("--max-degree"), std::string::npos) << zero.err;
   EXPECT_FALSE(fs::exists(curve));
 }
 
@@ -660,7 +747,7 @@ TEST(Cli, DegreesAboveTheCadLimitAreRefusedOrApproximatedOnRequest) {
   r = run({"trajectory", m.string(), "--point", "0,0,1", "-o", step.string(), "--max-degree", "11",
            "--tol", "1e-6"});
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_NE(r.err.find("approximation"), std::string::npos);
+  EXPECT_NE(r.err.find("approximated"), std::string::npos);
   json k = check(step, m, {"--point", "0,0,1"});
   EXPECT_EQ(k["degree_u"], 11);
   EXPECT_LE(k["max_deviation"].get<double>(), 1e-6);

@@ -198,6 +198,45 @@ def test_errors_have_the_clis_class_and_message(tmp_path):
     assert not (tmp_path / "x.step").exists()
 
 
+@pytest.mark.parametrize("scheme,tension,flags", [
+    ("kks", None, []), ("quintic", [0.2, 0.5, 0.5, 0.9, 0.5, 0.5, 0.5, 0.5, 0.5, 1.0],
+                        ["--tension", "0.2,0.5,0.5,0.9,0.5,0.5,0.5,0.5,0.5,1"]),
+    ("quartic", None, [])])
+def test_qspline_is_the_clis_and_does_the_whole_job(tmp_path, scheme, tension, flags):
+    path = tmp_path / "q.json"
+    r = cli("qspline", data("helix_10.json"), "-o", path, "--scheme", scheme, *flags)
+    assert r.returncode == 0, r.stderr
+    q = qmotion.qspline(data("helix_10.json"), scheme, tension=tension)
+    assert q.scheme == scheme
+    assert q.to_dict() == json.load(open(path))
+    loaded = qmotion.load(str(path))
+    assert isinstance(loaded, qmotion.QSpline) and loaded.knots == q.knots
+    info = q.info()
+    assert max(info["interpolation_residual"]) <= 1e-10
+    assert len(q.evaluate(q.param_range[0], point=[1, 0, 0])["angular_velocity"]) == 3
+    # The geometry is fitted within the tolerance and checked against the spline itself.
+    curve = qmotion.trajectory(q, [1, 2, 3], tol=1e-6)
+    assert curve.degree == 5
+    step = str(tmp_path / "s.step")
+    e = qmotion.export(q, step, profile="rect:2,1", tol=1e-5)
+    assert e["approximation_deviation"] <= e["approximation_tolerance"] == 1e-5
+    k = qmotion.check(step, q, profile="rect:2,1")
+    assert k["max_deviation"] <= 1e-5 and k["valid"]
+    assert len(qmotion.sweep(q, "rect:2,1", tol=1e-5)) == 4
+
+
+def test_compare_lists_every_scheme_like_the_cli():
+    figures = qmotion.compare(data("helix_10.json"), point=[1, 0, 0])
+    r = cli("compare", data("helix_10.json"), "--point", "1,0,0", "--json")
+    assert r.returncode == 0, r.stderr
+    assert figures == json.loads(r.stdout)
+    assert [f["scheme"] for f in figures] == ["elliptic bspline", "c1", "kks", "quintic", "quartic"]
+    for f in figures:
+        assert f["sweep_poles"] > 0 and f["trajectory_length"] > 0
+        assert f["sweep_exact"] == f["rational"]
+        assert f["max_key_residual"] <= 1e-10
+
+
 def test_demo_does_the_main_job(tmp_path):
     report = qmotion.demo(str(tmp_path / "demo"))
     assert len(report["exactness"]) == 9
@@ -207,7 +246,7 @@ def test_demo_does_the_main_job(tmp_path):
 
 def test_every_function_is_documented():
     for name in ("interpolate", "trajectory", "sweep", "export", "check", "load", "poses", "read_poses",
-                 "demo"):
+                 "demo", "qspline", "compare"):
         doc = getattr(qmotion, name).__doc__
         assert doc and len(doc) > 80, name
     assert "kinematic surface" in qmotion.sweep.__doc__
