@@ -18,6 +18,7 @@
 #include <qmotion/io/poses.hpp>
 #include <qmotion/io/profiles.hpp>
 #include <qmotion/io/qspline.hpp>
+#include <qmotion/io/toolpath.hpp>
 #include <qmotion/io/units.hpp>
 #include <qmotion/kernel/dual_quaternion.hpp>
 #include <qmotion/kernel/error.hpp>

@@ -22,8 +22,9 @@ int run(int argc, char** argv) {
       "says otherwise.\n");
 
   const std::vector<Command> commands = {
-      add_info(app),  add_eval(app),  add_interpolate(app), add_poses(app),   add_trajectory(app),
-      add_sweep(app), add_check(app), add_demo(app),        add_qspline(app), add_compare(app)};
+      add_info(app),       add_eval(app),    add_interpolate(app), add_poses(app),
+      add_trajectory(app), add_sweep(app),   add_check(app),       add_demo(app),
+      add_qspline(app),    add_compare(app), add_toolpath(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {

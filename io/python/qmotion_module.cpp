@@ -148,6 +148,25 @@ json result_json(const qm::io::ExportResult& r) {
   return j;
 }
 
+/// `qmotion toolpath` for either kind of motion: the report dict.
+py::object toolpath_call(const qm::io::AnyMotion& motion, const std::string& path,
+                         const py::object& point, const py::object& axis, double chord_tol,
+                         double angle_tol, double max_step, double feed, bool arc_length,
+                         const std::string& rotary, bool c_hold) {
+  qm::io::ToolpathOptions o;
+  o.output = path;
+  o.point = vec3(point, "point");
+  o.axis = vec3(axis, "axis");
+  o.chord_tol = chord_tol;
+  o.angle_tol_deg = angle_tol;
+  o.max_step = max_step;
+  o.feed = feed;
+  o.arc_length = arc_length;
+  o.rotary = rotary;
+  o.c_hold = c_hold;
+  return to_python(qm::io::toolpath(motion, o).report());
+}
+
 }  // namespace
 
 PYBIND11_MODULE(qmotion, m) {
@@ -566,6 +585,39 @@ PYBIND11_MODULE(qmotion, m) {
       "poses, a list of dicts: max_angular_velocity, max_angular_acceleration, "
       "trajectory_length (of point), sweep_poles (exact, or fitted within tol of the sweep's "
       "size), sweep_deviation, max_key_residual; or error.");
+
+  const char* toolpath_doc =
+      "`qmotion toolpath`: cutter-location points along the trajectory of point with the tool "
+      "axis R(t) axis, each chord within chord_tol of the exact trajectory and each axis within "
+      "angle_tol degrees of the chord's blend (certified from control points), written to path "
+      "(.apt/.cls, .csv, .nc/.ngc; rotary='ac' for a table-tilting A/C machine). Returns the "
+      "report dict: points, path_length, machining_time_min, max_chord_deviation_bound, ...";
+  m.def(
+      "toolpath",
+      [](const PyMotion& p, const std::string& path, const py::object& point,
+         const py::object& axis, double chord_tol, double angle_tol, double max_step, double feed,
+         bool arc_length, const std::string& rotary, bool c_hold) {
+        return toolpath_call(p.motion, path, point, axis, chord_tol, angle_tol, max_step, feed,
+                             arc_length, rotary, c_hold);
+      },
+      py::arg("motion"), py::arg("path"), py::arg("point"),
+      py::arg("axis") = std::vector<double>{0, 0, 1}, py::arg("chord_tol"),
+      py::arg("angle_tol") = 0.5, py::arg("max_step") = 0.0, py::arg("feed") = 1000.0,
+      py::arg("arc_length") = false, py::arg("rotary") = "", py::arg("c_hold") = false,
+      toolpath_doc);
+  m.def(
+      "toolpath",
+      [](const qm::io::QSplineMotion& q, const std::string& path, const py::object& point,
+         const py::object& axis, double chord_tol, double angle_tol, double max_step, double feed,
+         bool arc_length, const std::string& rotary, bool c_hold) {
+        return toolpath_call(q, path, point, axis, chord_tol, angle_tol, max_step, feed, arc_length,
+                             rotary, c_hold);
+      },
+      py::arg("motion"), py::arg("path"), py::arg("point"),
+      py::arg("axis") = std::vector<double>{0, 0, 1}, py::arg("chord_tol"),
+      py::arg("angle_tol") = 0.5, py::arg("max_step") = 0.0, py::arg("feed") = 1000.0,
+      py::arg("arc_length") = false, py::arg("rotary") = "", py::arg("c_hold") = false,
+      toolpath_doc);
 
 #ifdef QMOTION_WITH_CGAL
   m.def(

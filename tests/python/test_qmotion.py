@@ -237,6 +237,25 @@ def test_compare_lists_every_scheme_like_the_cli():
         assert f["max_key_residual"] <= 1e-10
 
 
+def test_toolpath_is_the_clis(tmp_path):
+    m = qmotion.interpolate(data("poses/helix_40.json"))
+    motion = tmp_path / "m.json"
+    m.save(str(motion))
+    ours = qmotion.toolpath(m, str(tmp_path / "a.ngc"), point=[1, 0, 2], axis=[1, 0, 1], chord_tol=0.01,
+                            rotary="ac")
+    r = cli("toolpath", motion, "--point", "1,0,2", "--axis", "1,0,1", "--chord-tol", "0.01",
+            "--rotary", "ac", "-o", tmp_path / "b.ngc")
+    assert r.returncode == 0, r.stderr
+    theirs = json.loads(r.stdout)
+    assert {k: v for k, v in ours.items() if k != "path"} == {k: v for k, v in theirs.items() if k != "path"}
+    assert open(tmp_path / "a.ngc").read() == open(tmp_path / "b.ngc").read()
+    q = qmotion.qspline(data("helix_10.json"), "kks")
+    report = qmotion.toolpath(q, str(tmp_path / "q.csv"), point=[0, 0, 0], chord_tol=0.001)
+    assert report["max_chord_deviation_bound"] <= 0.001
+    with pytest.raises(ValueError, match="--axis"):
+        qmotion.toolpath(m, str(tmp_path / "z.csv"), point=[0, 0, 0], axis=[0, 0, 0], chord_tol=0.1)
+
+
 def test_demo_does_the_main_job(tmp_path):
     report = qmotion.demo(str(tmp_path / "demo"))
     assert len(report["exactness"]) == 9
@@ -246,7 +265,7 @@ def test_demo_does_the_main_job(tmp_path):
 
 def test_every_function_is_documented():
     for name in ("interpolate", "trajectory", "sweep", "export", "check", "load", "poses", "read_poses",
-                 "demo", "qspline", "compare"):
+                 "demo", "qspline", "compare", "toolpath"):
         doc = getattr(qmotion, name).__doc__
         assert doc and len(doc) > 80, name
     assert "kinematic surface" in qmotion.sweep.__doc__

@@ -1,0 +1,298 @@
+// io/toolpath.cpp
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <functional>
+#include <qmotion/io/atomic_file.hpp>
+#include <qmotion/io/toolpath.hpp>
+#include <qmotion/io/units.hpp>
+#include <qmotion/kernel/error.hpp>
+#include <qmotion/sweep/fit.hpp>
+#include <qmotion/sweep/solid.hpp>
+#include <qmotion/sweep/surface.hpp>
+#include <sstream>
+
+namespace qmotion::io {
+namespace {
+
+using json = nlohmann::json;
+constexpr double kPi = 3.14159265358979323846;
+
+enum class CamFormat { apt, csv, gcode };
+
+CamFormat cam_format(const std::string& path) {
+  std::string e = std::filesystem::path(path).extension().string();
+  for (auto& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (e == ".apt" || e == ".cls") return CamFormat::apt;
+  if (e == ".csv") return CamFormat::csv;
+  if (e == ".nc" || e == ".ngc") return CamFormat::gcode;
+  throw Error(Errc::invalid_input,
+              "-o " + path + ": expected a .apt, .cls, .csv, .nc or .ngc file name");
+}
+
+void check_options(const ToolpathOptions& o, CamFormat f) {
+  if (!o.axis.allFinite() || !(o.axis.norm() > 1e-12))
+    throw Error(Errc::invalid_input, "--axis: expected a non-zero direction i,j,k");
+  if (!o.point.allFinite()) throw Error(Errc::invalid_input, "--point: expected finite numbers");
+  if (!(o.chord_tol > 0) || !(o.chord_tol <= 1e6))
+    throw Error(Errc::invalid_input,
+                "--chord-tol: expected a positive length up to 1e6 (a kilometre in mm)");
+  if (!(o.angle_tol_deg > 0) || !(o.angle_tol_deg < 90))
+    throw Error(Errc::invalid_input, "--angle-tol: expected degrees in (0, 90)");
+  if (!(o.max_step >= 0) || !std::isfinite(o.max_step))
+    throw Error(Errc::invalid_input, "--max-step: expected a length >= 0 (0: no cap)");
+  if (!(o.feed > 0) || !std::isfinite(o.feed))
+    throw Error(Errc::invalid_input, "--feed: expected a positive feed rate");
+  if (!o.rotary.empty() && o.rotary != "ac")
+    throw Error(Errc::invalid_input, "--rotary " + o.rotary + ": expected ac");
+  if (!o.rotary.empty() && f != CamFormat::gcode)
+    throw Error(Errc::invalid_input, "--rotary is for G-code output (.nc, .ngc)");
+  if (o.c_hold && o.rotary.empty()) throw Error(Errc::invalid_input, "--c-hold is for --rotary ac");
+}
+
+/// The motion as the toolpath needs it: its homogeneous point and axis trajectories (for
+/// a quaternion spline, fitted), the exact placement for measurements, and the fit's error.
+struct PathSource {
+  kernel::BSpline<Eigen::Vector4d> h, d;
+  std::function<Eigen::Vector3d(double)> exact_point;
+  std::function<Eigen::Vector3d(double)> exact_velocity;
+  double fit_error = 0;
+  std::string units;
+};
+
+PathSource source(const kernel::Motion<double>& m, const ToolpathOptions& o, double tol) {
+  (void)tol;
+  const auto poles = kernel::find_poles(m.curve);
+  if (!poles.empty())
+    throw Error(Errc::numerical_failure,
+                m.label() + ": the motion has a pole at t = " + std::to_string(poles.front()) +
+                    ": the tool would run to infinity there");
+  const auto h = sweep::trajectory(m, o.point);
+  const auto d =
+      sweep::trajectories(m, {Eigen::Vector4d(0, o.axis(0), o.axis(1), o.axis(2))}).front();
+  const auto dh = kernel::derivative(h);
+  return PathSource{h,
+                    d,
+                    [h](double t) {
+                      const Eigen::Vector4d y = kernel::evaluate(h, t);
+                      return Eigen::Vector3d(y.tail<3>() / y(0));
+                    },
+                    [h, dh](double t) { return sweep::detail::point_and_tangent(h, dh, t).second; },
+                    0.0,
+                    m.units};
+}
+
+PathSource source(const QSplineMotion& m, const ToolpathOptions& o, double tol) {
+  const kernel::QuaternionSpline& s = m.spline;
+  sweep::FrameFitOptions fo;
+  fo.tol = 0.1 * tol;
+  std::vector<int> continuity;
+  for (std::size_t k = 1; k + 1 < s.knots.size(); ++k) continuity.push_back(s.continuity(k));
+  // The axis tip 100 units out holds the fitted axis within 2e-3 x fo.tol radians.
+  const Eigen::Vector3d tip = o.point + 100 * o.axis.normalized();
+  sweep::FrameFit fit = [&] {
+    try {
+      return sweep::fit_frames([&](double t) { return s.frame(t); }, s.knots, continuity,
+                               {o.point, tip}, fo);
+    } catch (const Error& e) {
+      throw Error(e.code(), m.label() + ": " + e.what());
+    }
+  }();
+  const Eigen::Vector3d x = o.point;
+  return PathSource{
+      sweep::apply(fit.matrix, Eigen::Vector4d(1, x(0), x(1), x(2))),
+      sweep::apply(fit.matrix, Eigen::Vector4d(0, o.axis(0), o.axis(1), o.axis(2))),
+      [&s, x](double t) {
+        return Eigen::Vector3d(kernel::rotate(s.rotation(t), x) + s.position(t));
+      },
+      [&s, x](double t) {
+        return Eigen::Vector3d(s.angular_velocity(t).cross(kernel::rotate(s.rotation(t), x)) +
+                               s.velocity(t));
+      },
+      fit.max_deviation,
+      m.units};
+}
+
+/// The table-tilting A/C angles (degrees) that bring the tool axis k onto machine +Z:
+/// Rx(A) Rz(C) k = (0, 0, 1), C = atan2(i, j), A = atan2(sqrt(i^2 + j^2), k), or the other
+/// branch (-A, C + 180); the branch nearer the previous angles, C unwrapped.
+std::pair<double, double> ac_angles(const Eigen::Vector3d& k, const std::pair<double, double>* prev,
+                                    bool c_hold, double t) {
+  const double rho = std::hypot(k(0), k(1));
+  if (rho < 1e-12) {
+    if (!c_hold)
+      throw Error(Errc::invalid_input,
+                  "--rotary ac: the tool axis is vertical at t = " + std::to_string(t) +
+                      " (|k| = 1), where C is undefined; use --c-hold to keep the previous C");
+    const double c = prev ? prev->second : 0.0;
+    return {k(2) > 0 ? 0.0 : 180.0, c};
+  }
+  const double a = std::atan2(rho, k(2)) * 180 / kPi, c = std::atan2(k(0), k(1)) * 180 / kPi;
+  if (!prev) return {a, c};
+  std::pair<double, double> best{0, 0};
+  double cost = HUGE_VAL;
+  for (const auto& [aa, cc] :
+       {std::pair<double, double>(a, c), std::pair<double, double>(-a, c + 180)}) {
+    const double cu = cc + 360 * std::round((prev->second - cc) / 360);  // unwrapped
+    const double dcost = std::abs(aa - prev->first) + std::abs(cu - prev->second);
+    if (dcost < cost) {
+      cost = dcost;
+      best = {aa, cu};
+    }
+  }
+  return best;
+}
+
+Eigen::Matrix3d ac_matrix(double a_deg, double c_deg) {
+  const double a = a_deg * kPi / 180, c = c_deg * kPi / 180;
+  Eigen::Matrix3d rx, rz;
+  rx << 1, 0, 0, 0, std::cos(a), -std::sin(a), 0, std::sin(a), std::cos(a);
+  rz << std::cos(c), -std::sin(c), 0, std::sin(c), std::cos(c), 0, 0, 0, 1;
+  return rx * rz;
+}
+
+std::string num(double x, int digits = 6) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", digits,
+                std::abs(x) < 0.5 * std::pow(10.0, -digits) ? 0.0 : x);
+  return buf;
+}
+
+/// An APT statement folded at 72 columns with '$' continuations, breaking after commas.
+void apt_line(std::ostringstream& os, const std::string& s) {
+  std::string rest = s;
+  while (rest.size() > 72) {
+    std::size_t cut = rest.rfind(',', 70);
+    if (cut == std::string::npos) cut = 70;
+    os << rest.substr(0, cut + 1) << "$\n";
+    rest = rest.substr(cut + 1);
+  }
+  os << rest << "\n";
+}
+
+}  // namespace
+
+json Toolpath::report() const {
+  json j{{"path", path},
+         {"points", samples.size()},
+         {"segments", samples.empty() ? 0 : samples.size() - 1},
+         {"units", units},
+         {"path_length", path_length},
+         {"feed", feed},
+         {"machining_time_min", path_length / feed},
+         {"chord_tolerance", chord_tol},
+         {"max_chord_deviation_bound", max_chord_bound},
+         {"max_chord_deviation_measured", max_chord_measured},
+         {"angle_tolerance_deg", angle_tol_deg},
+         {"max_angle_deviation_bound_deg", max_angle_bound_deg}};
+  if (!a_deg.empty()) j["rotary"] = "ac";
+  return j;
+}
+
+Toolpath toolpath(const AnyMotion& motion, const ToolpathOptions& o) {
+  const CamFormat f = cam_format(o.output);
+  check_options(o, f);
+  const std::string& munits = units_of(motion);
+  Toolpath tp;
+  tp.units = munits == "in" ? "in" : "mm";
+  const double k = unit_factor(munits, tp.units);  // motion unit -> output unit
+  const double tol = o.chord_tol / k;              // in the motion's unit
+  const PathSource src = std::visit([&](const auto& m) { return source(m, o, tol); }, motion);
+  sweep::SamplerOptions so;
+  so.chord_tol = tol - src.fit_error;
+  so.angle_tol = o.angle_tol_deg * kPi / 180;
+  if (o.max_step > 0) so.max_step = o.max_step / k;
+  const auto sampled = sweep::sample_toolpath(src.h, src.d, so);
+  tp.samples = sampled.samples;
+  tp.max_chord_bound = (sampled.max_chord_bound + src.fit_error) * k;
+  tp.max_angle_bound_deg = sampled.max_angle_bound * 180 / kPi;
+  tp.chord_tol = o.chord_tol;
+  tp.angle_tol_deg = o.angle_tol_deg;
+  tp.feed = o.feed;
+  tp.path = o.output;
+  // Length of the exact trajectory, and the chords measured against it.
+  for (std::size_t i = 0; i + 1 < tp.samples.size(); ++i) {
+    const double t0 = tp.samples[i].t, t1 = tp.samples[i + 1].t;
+    for (const auto& [node, w] : sweep::detail::gauss_legendre())
+      tp.path_length +=
+          w * (t1 - t0) / 2 * src.exact_velocity((t0 + t1) / 2 + (t1 - t0) / 2 * node).norm();
+    for (int s = 1; s < 32; ++s)
+      tp.max_chord_measured = std::max(
+          tp.max_chord_measured,
+          sweep::detail::point_segment_distance(src.exact_point(t0 + (t1 - t0) * s / 32),
+                                                tp.samples[i].point, tp.samples[i + 1].point));
+  }
+  tp.path_length *= k;
+  tp.max_chord_measured *= k;
+  for (auto& s : tp.samples) s.point *= k;
+  if (!o.rotary.empty()) {
+    std::pair<double, double> prev;
+    for (std::size_t i = 0; i < tp.samples.size(); ++i) {
+      prev = ac_angles(tp.samples[i].axis, i ? &prev : nullptr, o.c_hold, tp.samples[i].t);
+      tp.a_deg.push_back(prev.first);
+      tp.c_deg.push_back(prev.second);
+    }
+  }
+  std::ostringstream os;
+  bool multax = false;
+  for (const auto& s : tp.samples)
+    multax = multax || sweep::detail::angle_between(s.axis, tp.samples.front().axis) > 1e-12;
+  switch (f) {
+    case CamFormat::csv: {
+      os << "t,x,y,z,i,j,k" << (o.arc_length ? ",s" : "") << "\n";
+      double s_len = 0;
+      for (std::size_t i = 0; i < tp.samples.size(); ++i) {
+        const auto& p = tp.samples[i];
+        if (i > 0) {
+          const double t0 = tp.samples[i - 1].t, t1 = p.t;
+          for (const auto& [node, w] : sweep::detail::gauss_legendre())
+            s_len += w * (t1 - t0) / 2 *
+                     src.exact_velocity((t0 + t1) / 2 + (t1 - t0) / 2 * node).norm() * k;
+        }
+        os << num(p.t, 12) << "," << num(p.point(0), 9) << "," << num(p.point(1), 9) << ","
+           << num(p.point(2), 9) << "," << num(p.axis(0), 12) << "," << num(p.axis(1), 12) << ","
+           << num(p.axis(2), 12);
+        if (o.arc_length) os << "," << num(s_len, 9);
+        os << "\n";
+      }
+      break;
+    }
+    case CamFormat::apt: {
+      apt_line(os, "PARTNO/QMOTION TOOLPATH");
+      apt_line(os, tp.units == "in" ? "UNITS/INCHES" : "UNITS/MM");
+      if (multax) apt_line(os, "MULTAX/ON");
+      apt_line(os, "FEDRAT/" + num(o.feed, 4));
+      for (const auto& s : tp.samples) {
+        std::string g = "GOTO/" + num(s.point(0)) + "," + num(s.point(1)) + "," + num(s.point(2));
+        if (multax)
+          g += "," + num(s.axis(0), 9) + "," + num(s.axis(1), 9) + "," + num(s.axis(2), 9);
+        apt_line(os, g);
+      }
+      apt_line(os, "FINI");
+      break;
+    }
+    case CamFormat::gcode: {
+      os << "(qmotion toolpath: " << tp.samples.size() << " points, chord tolerance "
+         << num(o.chord_tol, 6) << " " << tp.units
+         << (o.rotary.empty() ? ")\n" : ", table-tilting A/C, pivot at the workpiece origin)\n");
+      os << (tp.units == "in" ? "G20" : "G21") << " G90 G17 G94\n";
+      os << "F" << num(o.feed, 4) << "\n";
+      for (std::size_t i = 0; i < tp.samples.size(); ++i) {
+        Eigen::Vector3d p = tp.samples[i].point;
+        std::string extra;
+        if (!o.rotary.empty()) {
+          p = ac_matrix(tp.a_deg[i], tp.c_deg[i]) * p;
+          extra = " A" + num(tp.a_deg[i], 9) + " C" + num(tp.c_deg[i], 9);
+        }
+        os << (i == 0 ? "G0" : "G1") << " X" << num(p(0)) << " Y" << num(p(1)) << " Z" << num(p(2))
+           << extra << "\n";
+      }
+      os << "M2\n";
+      break;
+    }
+  }
+  write_file_atomic(o.output, os.str());
+  return tp;
+}
+
+}  // namespace qmotion::io

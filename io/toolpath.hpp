@@ -1,0 +1,48 @@
+// io/toolpath.hpp: CAM output (`qmotion toolpath`): cutter-location points with certified
+// chord and axis-angle bounds, written as APT CL data, CSV or G-code (3-axis, or a
+// table-tilting A/C machine).
+#pragma once
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+#include <qmotion/io/qspline.hpp>
+#include <qmotion/sweep/toolpath.hpp>
+#include <string>
+#include <vector>
+
+namespace qmotion::io {
+
+struct ToolpathOptions {
+  std::string output;                               ///< .apt/.cls, .csv, .nc/.ngc
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  ///< tool reference point (moving space)
+  Eigen::Vector3d axis = Eigen::Vector3d(0, 0, 1);  ///< tool axis (moving space), not zero
+  double chord_tol = -1;                            ///< required: > 0, below 1e3 x the path's size
+  double angle_tol_deg = 0.5;                       ///< axis tolerance in degrees, in (0, 90)
+  double max_step = 0;                              ///< chord length cap (0: none)
+  double feed = 1000;                               ///< per minute, in the output unit
+  bool arc_length = false;                          ///< CSV: add the arc length s
+  std::string rotary;   ///< G-code: "" (3-axis) or "ac" (table-tilting A/C)
+  bool c_hold = false;  ///< --rotary ac: keep the previous C where the axis is vertical
+};
+
+/// What was written: the points with their parameters and machine angles, and the report.
+struct Toolpath {
+  std::vector<sweep::ToolpathSample> samples;  ///< in the output unit
+  std::vector<double> a_deg, c_deg;            ///< --rotary ac: machine angles per sample
+  double path_length = 0;                      ///< of the exact trajectory (Gauss-Legendre)
+  double max_chord_bound = 0;                  ///< certified (plus the fit for a quaternion spline)
+  double max_chord_measured = 0;               ///< dense evaluation, 32 per segment
+  double max_angle_bound_deg = 0;
+  std::string units;  ///< mm or in
+  nlohmann::json report() const;
+  double chord_tol = 0, angle_tol_deg = 0, feed = 0;
+  std::string path;
+};
+
+/// The toolpath of options.point and options.axis under the motion (either kind), written
+/// to options.output by its extension. A quaternion spline's trajectory is fitted within a
+/// tenth of the chord tolerance first (sweep::fit_frames), the chords within the rest.
+/// Errc::invalid_input names a bad option (zero axis, tolerance, format, a --rotary pose at
+/// the A/C singularity without c_hold); nothing is written then.
+Toolpath toolpath(const AnyMotion& motion, const ToolpathOptions& options);
+
+}  // namespace qmotion::io

@@ -1,0 +1,65 @@
+// tests/bench/toolpath_bench.cpp: the guaranteed toolpath sampler (certified chords and
+// axes, sweep::sample_toolpath) in points per second along the 40-pose helix's B-spline
+// motion, and the time to write a 10^4-point toolpath (APT, CSV, G-code) through
+// io::toolpath (--max-step sets the count).
+#include <benchmark/benchmark.h>
+
+#include <filesystem>
+#include <qmotion/io/interpolate.hpp>
+#include <qmotion/io/poses.hpp>
+#include <qmotion/io/toolpath.hpp>
+#include <qmotion/sweep/surface.hpp>
+#include <string>
+
+namespace {
+namespace qm = qmotion;
+
+const qm::kernel::Motion<double>& helix() {
+  static const qm::kernel::Motion<double> m =
+      qm::io::interpolate(
+          qm::io::read_poses(std::string(QMOTION_TEST_DATA) + "/poses/helix_40.json"), {})
+          .motion;
+  return m;
+}
+
+void BM_Sampler(benchmark::State& state) {
+  const auto& m = helix();
+  const auto h = qm::sweep::trajectory(m, Eigen::Vector3d(1, 0, 2));
+  const auto d = qm::sweep::trajectories(m, {Eigen::Vector4d(0, 1, 0, 1)}).front();
+  qm::sweep::SamplerOptions o;
+  o.chord_tol = std::pow(10.0, -static_cast<double>(state.range(0)));
+  std::size_t points = 0;
+  for (auto _ : state) {
+    const auto s = qm::sweep::sample_toolpath(h, d, o);
+    points = s.samples.size();
+    benchmark::DoNotOptimize(s.max_chord_bound);
+  }
+  state.counters["points"] = static_cast<double>(points);
+  state.counters["points_per_s"] = benchmark::Counter(
+      static_cast<double>(points), benchmark::Counter::kIsIterationInvariantRate);
+  state.SetLabel("chord tol 1e-" + std::to_string(state.range(0)) + " mm");
+}
+BENCHMARK(BM_Sampler)->Arg(1)->Arg(2)->Arg(3)->Arg(4)->Unit(benchmark::kMillisecond);
+
+void BM_Write10k(benchmark::State& state) {
+  const char* ext[] = {".apt", ".csv", ".ngc"};
+  const qm::io::AnyMotion m = helix();
+  qm::io::ToolpathOptions o;
+  o.output = (std::filesystem::temp_directory_path() /
+              (std::string("qmotion_bench_tp") + ext[state.range(0)]))
+                 .string();
+  o.point = Eigen::Vector3d(1, 0, 2);
+  o.axis = Eigen::Vector3d(1, 0, 1);
+  o.chord_tol = 0.01;
+  o.max_step = 0.05;  // about 10^4 points along the helix
+  std::size_t points = 0;
+  for (auto _ : state) points = qm::io::toolpath(m, o).samples.size();
+  state.counters["points"] = static_cast<double>(points);
+  state.SetLabel(ext[state.range(0)]);
+  std::filesystem::remove(o.output);
+}
+BENCHMARK(BM_Write10k)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

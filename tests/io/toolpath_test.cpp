@@ -1,0 +1,258 @@
+// tests/io/toolpath_test.cpp mirrors io/toolpath.hpp and sweep/toolpath.hpp
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <qmotion/io/interpolate.hpp>
+#include <qmotion/io/poses.hpp>
+#include <qmotion/io/qspline.hpp>
+#include <qmotion/io/toolpath.hpp>
+#include <sstream>
+
+#include "io_test_util.hpp"
+
+namespace qmotion::test {
+namespace {
+namespace fs = std::filesystem;
+using V3 = Eigen::Vector3d;
+constexpr double kPi = 3.14159265358979323846;
+
+fs::path scratch(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("qmotion_toolpath_" + std::to_string(::getpid()));
+  fs::create_directories(d);
+  return d / name;
+}
+
+io::AnyMotion rational(const std::string& poses, const std::string& form = "") {
+  io::InterpolateOptions o;
+  o.form = form;
+  return io::interpolate(io::read_poses(test_data(poses)), o).motion;
+}
+
+/// The exact image of x under either kind of motion.
+V3 place(const io::AnyMotion& m, double t, const V3& x) {
+  if (const auto* q = std::get_if<io::QSplineMotion>(&m))
+    return kernel::rotate(q->spline.rotation(t), x) + q->spline.position(t);
+  return kernel::apply_point(kernel::evaluate(std::get<kernel::Motion<double>>(m), t), x);
+}
+V3 direction(const io::AnyMotion& m, double t, const V3& a) {
+  return place(m, t, a) - place(m, t, V3::Zero());
+}
+
+std::pair<double, double> interval(const io::AnyMotion& m) {
+  if (const auto* q = std::get_if<io::QSplineMotion>(&m)) return {q->spline.a(), q->spline.b()};
+  const auto& r = std::get<kernel::Motion<double>>(m);
+  return {r.a(), r.b()};
+}
+
+double segment_distance(const V3& x, const V3& a, const V3& b) {
+  const V3 ab = b - a;
+  const double s = std::clamp((x - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+  return (x - (a + s * ab)).norm();
+}
+
+/// Dense evaluation of every segment against the exact motion: the largest chord distance
+/// and axis angle from the blend of the end axes (radians).
+std::pair<double, double> dense_check(const io::AnyMotion& m, const io::Toolpath& tp, const V3& x,
+                                      const V3& a) {
+  double chord = 0, angle = 0;
+  for (std::size_t i = 0; i + 1 < tp.samples.size(); ++i) {
+    const auto &s0 = tp.samples[i], &s1 = tp.samples[i + 1];
+    for (int k = 0; k <= 64; ++k) {
+      const double u = s0.t + (s1.t - s0.t) * k / 64;
+      chord = std::max(chord, segment_distance(place(m, u, x), s0.point, s1.point));
+      const V3 ax = direction(m, u, a).normalized();
+      double best = HUGE_VAL;  // nearest blend direction
+      for (int j = 0; j <= 64; ++j) {
+        const V3 b = ((1 - j / 64.0) * s0.axis + j / 64.0 * s1.axis).normalized();
+        best = std::min(best, std::atan2(ax.cross(b).norm(), ax.dot(b)));
+      }
+      angle = std::max(angle, best);
+    }
+  }
+  return {chord, angle};
+}
+
+TEST(Toolpath, TolerancesHoldOnEveryKindOfMotion) {
+  io::QSplineOptions qo;
+  qo.scheme = "kks";
+  const std::vector<std::pair<std::string, io::AnyMotion>> motions{
+      {"bezier", rational("poses/five_positions.json")},
+      {"bspline", rational("poses/helix_40.json")},
+      {"c1", rational("poses/helix_40.json", "c1")},
+      {"kks", io::qspline(io::read_poses(test_data("helix_10.json")), qo)}};
+  const V3 x(1, -2, 3), a = V3(0.2, 0.1, 1).normalized();
+  for (const auto& [name, m] : motions)
+    for (double tol : {1e-1, 1e-2, 1e-3, 1e-4}) {
+      SCOPED_TRACE(name + " " + std::to_string(tol));
+      io::ToolpathOptions o;
+      o.output = scratch("tp.csv").string();
+      o.point = x;
+      o.axis = a;
+      o.chord_tol = tol;
+      const io::Toolpath tp = io::toolpath(m, o);
+      EXPECT_LE(tp.max_chord_bound, tol);
+      EXPECT_LE(tp.max_angle_bound_deg, 0.5);
+      const auto [chord, angle] = dense_check(m, tp, x, a);
+      EXPECT_LE(chord, tol * (1 + 1e-9));
+      EXPECT_LE(chord, tp.max_chord_bound * (1 + 1e-6));  // the bound bounds
+      EXPECT_LE(angle, 0.5 * kPi / 180 * (1 + 1e-9));
+      // The points lie on the trajectory (the fit's tenth of the tolerance for kks).
+      for (const auto& s : tp.samples)
+        EXPECT_LE((s.point - place(m, s.t, x)).norm(),
+                  name == "kks" ? 0.1 * tol : 1e-9 * (1 + s.point.norm()));
+      const auto [ta, tb] = interval(m);
+      EXPECT_EQ(tp.samples.front().t, ta);
+      EXPECT_EQ(tp.samples.back().t, tb);
+    }
+}
+
+TEST(Toolpath, ACircularArcNeedsAtMostOneAndAHalfTimesTheMinimum) {
+  // A pure rotation about z through 120 degrees: the point at radius r runs on a circle;
+  // the fewest chords within T number ceil(theta / (2 acos(1 - T / r))).
+  const std::string poses = scratch("arc.json").string();
+  std::ofstream(poses) << R"({"poses": [
+    {"t": 0, "position": [0, 0, 0], "rotation": {"axis_angle": {"axis": [0, 0, 1], "angle_deg": 0}}},
+    {"t": 0.5, "position": [0, 0, 0], "rotation": {"axis_angle": {"axis": [0, 0, 1], "angle_deg": 60}}},
+    {"t": 1, "position": [0, 0, 0], "rotation": {"axis_angle": {"axis": [0, 0, 1], "angle_deg": 120}}}]})";
+  io::InterpolateOptions io_opt;
+  const io::AnyMotion m = io::interpolate(io::read_poses(poses), io_opt).motion;
+  const double r = 10, theta = 2 * kPi / 3;
+  for (double tol : {1e-1, 1e-2, 1e-3, 1e-4}) {
+    io::ToolpathOptions o;
+    o.output = scratch("arc.csv").string();
+    o.point = V3(r, 0, 0);
+    o.chord_tol = tol;
+    const auto tp = io::toolpath(m, o);
+    const double minimum = std::ceil(theta / (2 * std::acos(1 - tol / r)));
+    const double segments = static_cast<double>(tp.samples.size() - 1);
+    EXPECT_LE(segments, 1.5 * minimum) << "tol " << tol;
+    EXPECT_GE(segments, minimum) << "tol " << tol;
+    std::cout << "[ arc      ] tol " << tol << ": " << segments << " segments, minimum " << minimum
+              << "\n";
+    EXPECT_NEAR(tp.path_length, r * theta, 1e-9 * r);
+  }
+}
+
+/// The statements of an APT file, continuation lines joined; every line at most 72 wide.
+std::vector<std::string> apt_statements(const std::string& path) {
+  std::ifstream f(path);
+  std::vector<std::string> out;
+  std::string line, cur;
+  while (std::getline(f, line)) {
+    EXPECT_LE(line.size(), 72u) << line;
+    if (!line.empty() && line.back() == '$') {
+      cur += line.substr(0, line.size() - 1);
+    } else {
+      out.push_back(cur + line);
+      cur.clear();
+    }
+  }
+  return out;
+}
+
+std::vector<double> numbers_after(const std::string& s, char sep) {
+  std::vector<double> v;
+  std::stringstream ss(s.substr(s.find(sep) + 1));
+  for (std::string cell; std::getline(ss, cell, ',');) v.push_back(std::stod(cell));
+  return v;
+}
+
+TEST(Toolpath, AptGotosLieOnTheTrajectoryWithUnitAxes) {
+  const io::AnyMotion m = rational("poses/helix_40.json");
+  io::ToolpathOptions o;
+  o.output = scratch("tp.apt").string();
+  o.point = V3(0, 0, 2);
+  o.axis = V3(0, 1, 1);
+  o.chord_tol = 1e-3;
+  o.feed = 2500;
+  const auto tp = io::toolpath(m, o);
+  const auto st = apt_statements(o.output);
+  ASSERT_GE(st.size(), 5u);
+  EXPECT_EQ(st[0].rfind("PARTNO", 0), 0u);
+  EXPECT_EQ(st[1], "UNITS/MM");
+  EXPECT_EQ(st[2], "MULTAX/ON");
+  EXPECT_EQ(st[3], "FEDRAT/2500.0000");
+  EXPECT_EQ(st.back(), "FINI");
+  std::size_t g = 0;
+  for (const auto& s : st) {
+    if (s.rfind("GOTO/", 0) != 0) continue;
+    const auto v = numbers_after(s, '/');
+    ASSERT_EQ(v.size(), 6u) << s;
+    ASSERT_LT(g, tp.samples.size());
+    const double t = tp.samples[g++].t;
+    EXPECT_LE((V3(v[0], v[1], v[2]) - place(m, t, o.point)).norm(), 2e-6) << s;
+    EXPECT_NEAR(V3(v[3], v[4], v[5]).norm(), 1.0, 2e-9) << s;
+    EXPECT_LE((V3(v[3], v[4], v[5]) - direction(m, t, o.axis).normalized()).norm(), 2e-9);
+  }
+  EXPECT_EQ(g, tp.samples.size());
+}
+
+TEST(Toolpath, RotaryAcAnglesReproduceTheAxisAndStayContinuous) {
+  const io::AnyMotion m = rational("poses/helix_40.json");
+  io::ToolpathOptions o;
+  o.output = scratch("tp5.ngc").string();
+  o.point = V3(1, 0, 0);
+  o.axis = V3(1, 0, 1);
+  o.chord_tol = 1e-2;
+  o.rotary = "ac";
+  const auto tp = io::toolpath(m, o);
+  ASSERT_EQ(tp.a_deg.size(), tp.samples.size());
+  for (std::size_t i = 0; i < tp.samples.size(); ++i) {
+    const double A = tp.a_deg[i] * kPi / 180, C = tp.c_deg[i] * kPi / 180;
+    const Eigen::Matrix3d T =
+        (Eigen::AngleAxisd(A, V3::UnitX()) * Eigen::AngleAxisd(C, V3::UnitZ())).toRotationMatrix();
+    const V3 z = T * tp.samples[i].axis;
+    EXPECT_LE(std::atan2(z.cross(V3::UnitZ()).norm(), z.dot(V3::UnitZ())), 1e-9) << "sample " << i;
+    if (i > 0) {
+      EXPECT_LT(std::abs(tp.c_deg[i] - tp.c_deg[i - 1]), 90.0) << "C jumps at sample " << i;
+      EXPECT_LT(std::abs(tp.a_deg[i] - tp.a_deg[i - 1]), 90.0) << "A jumps at sample " << i;
+    }
+  }
+}
+
+TEST(Toolpath, BadOptionsAreRefusedAndWriteNothing) {
+  const io::AnyMotion m = rational("poses/five_positions.json");
+  const std::string out = scratch("bad.ngc").string();
+  auto with = [&](auto change) {
+    io::ToolpathOptions o;
+    o.output = out;
+    o.chord_tol = 1e-2;
+    change(o);
+    return [m, o] { io::toolpath(m, o); };
+  };
+  EXPECT_TRUE(throws_error(with([](io::ToolpathOptions& o) { o.axis = V3::Zero(); }),
+                           Errc::invalid_input, {"--axis"}));
+  EXPECT_TRUE(throws_error(with([](io::ToolpathOptions& o) { o.chord_tol = 0; }),
+                           Errc::invalid_input, {"--chord-tol"}));
+  EXPECT_TRUE(throws_error(with([](io::ToolpathOptions& o) { o.chord_tol = 1e300; }),
+                           Errc::invalid_input, {"--chord-tol"}));
+  EXPECT_TRUE(throws_error(with([](io::ToolpathOptions& o) { o.output = "x.gcode"; }),
+                           Errc::invalid_input, {".ngc"}));
+  EXPECT_TRUE(throws_error(with([](io::ToolpathOptions& o) { o.angle_tol_deg = 0; }),
+                           Errc::invalid_input, {"--angle-tol"}));
+  // A pure rotation about z keeps the axis (0, 0, 1) vertical: C is undefined there.
+  const std::string poses = scratch("spin.json").string();
+  std::ofstream(poses) << R"({"poses": [
+    {"t": 0, "position": [0, 0, 0], "rotation": {"quaternion": [1, 0, 0, 0]}},
+    {"t": 1, "position": [5, 0, 0], "rotation": {"axis_angle": {"axis": [0, 0, 1], "angle_deg": 40}}},
+    {"t": 2, "position": [9, 2, 0], "rotation": {"axis_angle": {"axis": [0, 0, 1], "angle_deg": 80}}}]})";
+  const io::AnyMotion spin = io::interpolate(io::read_poses(poses), {}).motion;
+  io::ToolpathOptions o;
+  o.output = out;
+  o.chord_tol = 1e-2;
+  o.rotary = "ac";
+  EXPECT_TRUE(
+      throws_error([&] { io::toolpath(spin, o); }, Errc::invalid_input, {"vertical", "--c-hold"}));
+  EXPECT_FALSE(fs::exists(out));
+  o.c_hold = true;
+  const auto tp = io::toolpath(spin, o);
+  for (double a : tp.a_deg) EXPECT_EQ(a, 0.0);
+  EXPECT_TRUE(fs::exists(out));
+}
+
+}  // namespace
+}  // namespace qmotion::test
