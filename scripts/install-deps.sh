@@ -3,7 +3,8 @@
 # Usage: scripts/install-deps.sh [--test]
 #   --test  also installs what the test suite needs (GoogleTest, Google Benchmark,
 #           clang-format, pytest for the Python module, FreeCAD for the interop test, and
-#           clang with libclang-rt-14-dev for scripts/test-sanitized.sh: sanitizers, libFuzzer).
+#           clang with libclang-rt-14-dev for scripts/test-sanitized.sh: sanitizers, libFuzzer;
+#           linuxcnc-uspace for its rs274 G-code interpreter).
 set -euo pipefail
 
 packages=(
@@ -16,7 +17,7 @@ packages=(
 )
 if [[ "${1:-}" == "--test" ]]; then
   packages+=(googletest libgtest-dev libgmock-dev libbenchmark-dev clang-format git python3 python3-pytest freecad-python3
-    clang libclang-rt-14-dev)
+    clang libclang-rt-14-dev linuxcnc-uspace)
 fi
 
 missing=()
