@@ -194,7 +194,17 @@ Toolpath toolpath(const AnyMotion& motion, const ToolpathOptions& o) {
   check_options(o, f);
   const std::string& munits = units_of(motion);
   Toolpath tp;
-  tp.units = munits == "in" ? "in" : "mm";
+  // The output unit: --units, else the motion's; APT and G-code know only mm and inches,
+  // so other units become mm there unless asked for (then refused).
+  if (!o.units.empty()) {
+    tp.units = canonical_unit(o.units, "--units");
+    if (f != CamFormat::csv && tp.units != "mm" && tp.units != "in")
+      throw Error(Errc::invalid_input, "--units " + o.units +
+                                           ": APT and G-code declare millimetres or inches only "
+                                           "(mm, in); CSV takes any unit");
+  } else {
+    tp.units = f == CamFormat::csv ? munits : munits == "in" ? "in" : "mm";
+  }
   const double k = unit_factor(munits, tp.units);  // motion unit -> output unit
   const double tol = o.chord_tol / k;              // in the motion's unit
   const PathSource src = std::visit([&](const auto& m) { return source(m, o, tol); }, motion);

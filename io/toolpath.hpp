@@ -15,13 +15,16 @@ struct ToolpathOptions {
   std::string output;                               ///< .apt/.cls, .csv, .nc/.ngc
   Eigen::Vector3d point = Eigen::Vector3d::Zero();  ///< tool reference point (moving space)
   Eigen::Vector3d axis = Eigen::Vector3d(0, 0, 1);  ///< tool axis (moving space), not zero
-  double chord_tol = -1;                            ///< required: > 0, below 1e3 x the path's size
+  double chord_tol = -1;                            ///< required: > 0, at most 1e6 (output unit)
   double angle_tol_deg = 0.5;                       ///< axis tolerance in degrees, in (0, 90)
   double max_step = 0;                              ///< chord length cap (0: none)
   double feed = 1000;                               ///< per minute, in the output unit
   bool arc_length = false;                          ///< CSV: add the arc length s
   std::string rotary;   ///< G-code: "" (3-axis) or "ac" (table-tilting A/C)
   bool c_hold = false;  ///< --rotary ac: keep the previous C where the axis is vertical
+  /// The unit of the output and of chord_tol, max_step and feed (default: the motion's;
+  /// APT and G-code: mm or in, a motion in another unit is written in mm).
+  std::string units;
 };
 
 /// What was written: the points with their parameters and machine angles, and the report.
@@ -32,7 +35,7 @@ struct Toolpath {
   double max_chord_bound = 0;                  ///< certified (plus the fit for a quaternion spline)
   double max_chord_measured = 0;               ///< dense evaluation, 32 per segment
   double max_angle_bound_deg = 0;
-  std::string units;  ///< mm or in
+  std::string units;  ///< the output unit
   nlohmann::json report() const;
   double chord_tol = 0, angle_tol_deg = 0, feed = 0;
   std::string path;

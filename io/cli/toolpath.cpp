@@ -25,8 +25,7 @@ Command add_toolpath(CLI::App& app) {
       ->required();
   sub->add_option("--axis", o->axis, "Tool axis i,j,k of the moving space (default 0,0,1)");
   sub->add_option("--chord-tol", o->chord_tol,
-                  "Largest distance of the exact trajectory from the chords (mm, or inches for an "
-                  "inch motion)")
+                  "Largest distance of the exact trajectory from the chords, in the output unit")
       ->required();
   sub->add_option("--angle-tol", o->angle_tol, "Largest axis deviation in degrees (default 0.5)");
   sub->add_option("--max-step", o->max_step, "Longest chord (default: no cap)");
@@ -37,6 +36,11 @@ Command add_toolpath(CLI::App& app) {
                   "+Z, pivot at the workpiece origin; C unwrapped, the branch kept continuous)");
   sub->add_flag("--c-hold", o->options.c_hold,
                 "--rotary ac: keep the previous C where the axis is vertical (else refused)");
+  sub->add_option(
+      "--units", o->options.units,
+      "Write in U and read --chord-tol, --max-step and --feed in U: mm, in (APT, G-code) "
+      "or any of mm, cm, m, um, in, ft (CSV); default the motion's (mm for APT and "
+      "G-code unless it is in inches)");
   sub->add_option("-o,--output", o->options.output, "Output .apt/.cls, .csv or .nc/.ngc")
       ->required();
   return {sub, [o] {

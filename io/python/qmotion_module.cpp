@@ -152,8 +152,9 @@ json result_json(const qm::io::ExportResult& r) {
 py::object toolpath_call(const qm::io::AnyMotion& motion, const std::string& path,
                          const py::object& point, const py::object& axis, double chord_tol,
                          double angle_tol, double max_step, double feed, bool arc_length,
-                         const std::string& rotary, bool c_hold) {
+                         const std::string& rotary, bool c_hold, const std::string& units) {
   qm::io::ToolpathOptions o;
+  o.units = units;
   o.output = path;
   o.point = vec3(point, "point");
   o.axis = vec3(axis, "axis");
@@ -596,28 +597,28 @@ PYBIND11_MODULE(qmotion, m) {
       "toolpath",
       [](const PyMotion& p, const std::string& path, const py::object& point,
          const py::object& axis, double chord_tol, double angle_tol, double max_step, double feed,
-         bool arc_length, const std::string& rotary, bool c_hold) {
+         bool arc_length, const std::string& rotary, bool c_hold, const std::string& units) {
         return toolpath_call(p.motion, path, point, axis, chord_tol, angle_tol, max_step, feed,
-                             arc_length, rotary, c_hold);
+                             arc_length, rotary, c_hold, units);
       },
       py::arg("motion"), py::arg("path"), py::arg("point"),
       py::arg("axis") = std::vector<double>{0, 0, 1}, py::arg("chord_tol"),
       py::arg("angle_tol") = 0.5, py::arg("max_step") = 0.0, py::arg("feed") = 1000.0,
       py::arg("arc_length") = false, py::arg("rotary") = "", py::arg("c_hold") = false,
-      toolpath_doc);
+      py::arg("units") = "", toolpath_doc);
   m.def(
       "toolpath",
       [](const qm::io::QSplineMotion& q, const std::string& path, const py::object& point,
          const py::object& axis, double chord_tol, double angle_tol, double max_step, double feed,
-         bool arc_length, const std::string& rotary, bool c_hold) {
+         bool arc_length, const std::string& rotary, bool c_hold, const std::string& units) {
         return toolpath_call(q, path, point, axis, chord_tol, angle_tol, max_step, feed, arc_length,
-                             rotary, c_hold);
+                             rotary, c_hold, units);
       },
       py::arg("motion"), py::arg("path"), py::arg("point"),
       py::arg("axis") = std::vector<double>{0, 0, 1}, py::arg("chord_tol"),
       py::arg("angle_tol") = 0.5, py::arg("max_step") = 0.0, py::arg("feed") = 1000.0,
       py::arg("arc_length") = false, py::arg("rotary") = "", py::arg("c_hold") = false,
-      toolpath_doc);
+      py::arg("units") = "", toolpath_doc);
 
 #ifdef QMOTION_WITH_CGAL
   m.def(

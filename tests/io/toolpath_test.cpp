@@ -214,6 +214,30 @@ TEST(Toolpath, RotaryAcAnglesReproduceTheAxisAndStayContinuous) {
   }
 }
 
+TEST(Toolpath, UnitsConvertTheOutputAndTheTolerances) {
+  const io::AnyMotion m = rational("poses/five_positions.json");  // mm
+  io::ToolpathOptions o;
+  o.output = scratch("mm.csv").string();
+  o.point = V3(1, 2, 3);
+  o.chord_tol = 0.0254;
+  const auto mm = io::toolpath(m, o);
+  o.output = scratch("in.ngc").string();
+  o.units = "in";
+  o.chord_tol = 0.001;  // the same length in inches
+  const auto in = io::toolpath(m, o);
+  EXPECT_EQ(in.units, "in");
+  EXPECT_EQ(in.samples.size(), mm.samples.size());
+  EXPECT_NEAR(in.path_length * 25.4, mm.path_length, 1e-9 * mm.path_length);
+  EXPECT_LE((in.samples.back().point * 25.4 - mm.samples.back().point).norm(), 1e-9);
+  std::ifstream f(o.output);
+  std::string header, modes;
+  std::getline(f, header);
+  std::getline(f, modes);
+  EXPECT_EQ(modes.rfind("G20", 0), 0u) << modes;
+  o.units = "cm";
+  EXPECT_TRUE(throws_error([&] { io::toolpath(m, o); }, Errc::invalid_input, {"--units cm"}));
+}
+
 TEST(Toolpath, BadOptionsAreRefusedAndWriteNothing) {
   const io::AnyMotion m = rational("poses/five_positions.json");
   const std::string out = scratch("bad.ngc").string();
