@@ -54,8 +54,23 @@ double segment_distance(const V3& x, const V3& a, const V3& b) {
   return (x - (a + s * ab)).norm();
 }
 
-/// Dense evaluation of every segment against the exact motion: the largest chord distance
-/// and axis angle from the blend of the end axes (radians).
+double angle(const V3& u, const V3& v) { return std::atan2(u.cross(v).norm(), u.dot(v)); }
+
+/// The angle from the unit vector x to the nearest normalised blend of the unit vectors u
+/// and v (the shorter great-circle arc between them), in closed form.
+double angle_to_arc(const V3& x, const V3& u, const V3& v) {
+  const V3 n = u.cross(v);
+  if (n.norm() < 1e-15) return angle(x, u);
+  const V3 nn = n.normalized();
+  const V3 p = x - x.dot(nn) * nn;  // x projected into the arc's plane
+  // Inside the arc when p lies between u and v (on the sides of u and v that face each other).
+  if (p.norm() > 0 && u.cross(p).dot(nn) >= 0 && p.cross(v).dot(nn) >= 0)
+    return std::atan2(std::abs(x.dot(nn)), p.norm());
+  return std::min(angle(x, u), angle(x, v));
+}
+
+/// Dense evaluation of every segment against the exact motion (65 points each): the
+/// largest chord distance and axis angle from the blends of the end axes (radians).
 std::pair<double, double> dense_check(const io::AnyMotion& m, const io::Toolpath& tp, const V3& x,
                                       const V3& a) {
   double chord = 0, angle = 0;
@@ -65,12 +80,7 @@ std::pair<double, double> dense_check(const io::AnyMotion& m, const io::Toolpath
       const double u = s0.t + (s1.t - s0.t) * k / 64;
       chord = std::max(chord, segment_distance(place(m, u, x), s0.point, s1.point));
       const V3 ax = direction(m, u, a).normalized();
-      double best = HUGE_VAL;  // nearest blend direction
-      for (int j = 0; j <= 64; ++j) {
-        const V3 b = ((1 - j / 64.0) * s0.axis + j / 64.0 * s1.axis).normalized();
-        best = std::min(best, std::atan2(ax.cross(b).norm(), ax.dot(b)));
-      }
-      angle = std::max(angle, best);
+      angle = std::max(angle, angle_to_arc(ax, s0.axis, s1.axis));
     }
   }
   return {chord, angle};
