@@ -124,9 +124,7 @@ std::vector<SchemeFigures> compare_schemes(const PoseSet& poses, const CompareOp
       const QSplineMotion q = qspline(poses, qo);
       const kernel::QuaternionSpline& s = q.spline;
       const Measured mm{s.a(), s.b(), [&](double t) { return s.angular_velocity(t); },
-                        [&](double t, const Eigen::Vector3d& x) {
-                          return Eigen::Vector3d(kernel::rotate(s.rotation(t), x) + s.position(t));
-                        }};
+                        [&](double t, const Eigen::Vector3d& x) { return s.place(t, x); }};
       measure(mm, o, f);
       ExportOptions eo;
       eo.tol = o.rel_tol * std::max(sweep_size(mm, profile), 1e-300);
@@ -136,12 +134,8 @@ std::vector<SchemeFigures> compare_schemes(const PoseSet& poses, const CompareOp
       f.sweep_poles = er.poles;
       f.sweep_degree_u = er.degree_u;
       f.sweep_deviation = er.approx_deviation.value_or(0.0);
-      for (std::size_t i = 0; i < s.keys.size(); ++i) {
-        const auto want = kernel::DualQuaternion<double>::pose(s.positions[i], s.keys[i]);
-        const auto got =
-            kernel::DualQuaternion<double>::pose(s.position(s.knots[i]), s.rotation(s.knots[i]));
-        f.max_key_residual = std::max(f.max_key_residual, kernel::pose_residual(got, want));
-      }
+      for (double r : qspline_key_residuals(s))
+        f.max_key_residual = std::max(f.max_key_residual, r);
     } catch (const Error& e) {
       f.error = e.what();
     }

@@ -732,13 +732,11 @@ json check_geometry(const std::string& file, const QSplineMotion& m,
                     const std::optional<sweep::Profile<double>>& profile,
                     const std::optional<Eigen::Vector3d>& point, int grid) {
   const kernel::QuaternionSpline& s = m.spline;
-  json out = check_placement(
-      file,
-      Placement{s.a(), s.b(), m.units,
-                [&](double t, const Eigen::Vector3d& x) {
-                  return Eigen::Vector3d(kernel::rotate(s.rotation(t), x) + s.position(t));
-                }},
-      profile, point, grid);
+  json out =
+      check_placement(file,
+                      Placement{s.a(), s.b(), m.units,
+                                [&](double t, const Eigen::Vector3d& x) { return s.place(t, x); }},
+                      profile, point, grid);
   out["motion"] = std::string("quaternion-spline ") + kernel::to_string(s.scheme) +
                   " (the motion itself: exp and log of its quaternions, not the fit)";
   return out;
@@ -774,10 +772,9 @@ QSplineFit fit_qspline(const QSplineMotion& m, const std::vector<Eigen::Vector3d
     }
     fo.tol = 1e-6 * std::max(diagonal(samples), 1e-300);
   }
-  std::vector<int> continuity;
-  for (std::size_t k = 1; k + 1 < s.knots.size(); ++k) continuity.push_back(s.continuity(k));
   try {
-    return {sweep::fit_frames([&](double t) { return s.frame(t); }, s.knots, continuity, pts, fo),
+    return {sweep::fit_frames([&](double t) { return s.frame(t); }, s.knots,
+                              s.interior_continuity(), pts, fo),
             fo.tol};
   } catch (const Error& e) {
     throw Error(e.code(), m.label() + ": " + e.what());
@@ -848,10 +845,8 @@ std::vector<sweep::NurbsSurface<double>> compute_surfaces(const QSplineMotion& m
         return region.area * std::abs(sweep::detail::integrate(
                                  s.knots,
                                  [&](double t) {
-                                   const auto rot = s.rotation(t);
-                                   const Eigen::Vector3d c = kernel::rotate(rot, region.centroid);
-                                   return kernel::rotate(rot, region.normal)
-                                       .dot(s.angular_velocity(t).cross(c) + s.velocity(t));
+                                   return kernel::rotate(s.rotation(t), region.normal)
+                                       .dot(s.point_velocity(t, region.centroid));
                                  },
                                  64));
       },

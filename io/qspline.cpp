@@ -265,6 +265,17 @@ const std::string& units_of(const AnyMotion& m) {
   return std::visit([](const auto& x) -> const std::string& { return x.units; }, m);
 }
 
+std::vector<double> qspline_key_residuals(const kernel::QuaternionSpline& s) {
+  std::vector<double> res;
+  for (std::size_t i = 0; i < s.keys.size(); ++i) {
+    const auto want = kernel::DualQuaternion<double>::pose(s.positions[i], s.keys[i]);
+    const auto got =
+        kernel::DualQuaternion<double>::pose(s.position(s.knots[i]), s.rotation(s.knots[i]));
+    res.push_back(kernel::pose_residual(got, want));
+  }
+  return res;
+}
+
 json qspline_info(const json& doc, const kernel::QuaternionSpline& s) {
   json out;
   out["type"] = "quaternion-spline";
@@ -277,14 +288,7 @@ json qspline_info(const json& doc, const kernel::QuaternionSpline& s) {
   out["units"] = doc.contains("units") ? doc["units"] : json("mm");
   out["knots"] = s.knots;
   out["plucker_residual"] = 0.0;
-  json res = json::array();
-  for (std::size_t i = 0; i < s.keys.size(); ++i) {
-    const auto want = kernel::DualQuaternion<double>::pose(s.positions[i], s.keys[i]);
-    const auto got =
-        kernel::DualQuaternion<double>::pose(s.position(s.knots[i]), s.rotation(s.knots[i]));
-    res.push_back(kernel::pose_residual(got, want));
-  }
-  out["interpolation_residual"] = res;
+  out["interpolation_residual"] = qspline_key_residuals(s);
   out["poles"] = json::array();
   if (s.scheme == QSplineScheme::quintic) out["tension"] = s.tension;
   if (s.scheme == QSplineScheme::kks) out.update(kks_record(s));

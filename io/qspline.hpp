@@ -60,6 +60,9 @@ AnyMotion load_any_motion(const std::string& path);
 /// The length unit of either kind.
 const std::string& units_of(const AnyMotion& m);
 
+/// pose_residual of the spline at every key against the key's pose.
+std::vector<double> qspline_key_residuals(const kernel::QuaternionSpline& spline);
+
 /// `info` for a quaternion-spline file: type, scheme, basis, degree and order (null: not
 /// rational), segments, param_range, units, plucker_residual (0: rotation and translation are
 /// separate), interpolation_residual per key, poles (none), and for KKS iterations,

@@ -49,10 +49,8 @@ SelfIntersection sweep_self_intersections(const kernel::Motion<double>& motion,
 SelfIntersection sweep_self_intersections(const kernel::QuaternionSpline& motion,
                                           const sweep::Profile<double>& profile, int samples_t) {
   return sweep_self_intersections(
-      [&](double t, const Eigen::Vector3d& x) {
-        return Eigen::Vector3d(kernel::rotate(motion.rotation(t), x) + motion.position(t));
-      },
-      motion.a(), motion.b(), motion.segments(), profile, samples_t);
+      [&](double t, const Eigen::Vector3d& x) { return motion.place(t, x); }, motion.a(),
+      motion.b(), motion.segments(), profile, samples_t);
 }
 
 SelfIntersection sweep_self_intersections(

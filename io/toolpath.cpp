@@ -86,31 +86,23 @@ PathSource source(const QSplineMotion& m, const ToolpathOptions& o, double tol) 
   const kernel::QuaternionSpline& s = m.spline;
   sweep::FrameFitOptions fo;
   fo.tol = 0.1 * tol;
-  std::vector<int> continuity;
-  for (std::size_t k = 1; k + 1 < s.knots.size(); ++k) continuity.push_back(s.continuity(k));
   // The axis tip 100 units out holds the fitted axis within 2e-3 x fo.tol radians.
   const Eigen::Vector3d tip = o.point + 100 * o.axis.normalized();
   sweep::FrameFit fit = [&] {
     try {
-      return sweep::fit_frames([&](double t) { return s.frame(t); }, s.knots, continuity,
-                               {o.point, tip}, fo);
+      return sweep::fit_frames([&](double t) { return s.frame(t); }, s.knots,
+                               s.interior_continuity(), {o.point, tip}, fo);
     } catch (const Error& e) {
       throw Error(e.code(), m.label() + ": " + e.what());
     }
   }();
   const Eigen::Vector3d x = o.point;
-  return PathSource{
-      sweep::apply(fit.matrix, Eigen::Vector4d(1, x(0), x(1), x(2))),
-      sweep::apply(fit.matrix, Eigen::Vector4d(0, o.axis(0), o.axis(1), o.axis(2))),
-      [&s, x](double t) {
-        return Eigen::Vector3d(kernel::rotate(s.rotation(t), x) + s.position(t));
-      },
-      [&s, x](double t) {
-        return Eigen::Vector3d(s.angular_velocity(t).cross(kernel::rotate(s.rotation(t), x)) +
-                               s.velocity(t));
-      },
-      fit.max_deviation,
-      m.units};
+  return PathSource{sweep::apply(fit.matrix, Eigen::Vector4d(1, x(0), x(1), x(2))),
+                    sweep::apply(fit.matrix, Eigen::Vector4d(0, o.axis(0), o.axis(1), o.axis(2))),
+                    [&s, x](double t) { return s.place(t, x); },
+                    [&s, x](double t) { return s.point_velocity(t, x); },
+                    fit.max_deviation,
+                    m.units};
 }
 
 /// The table-tilting A/C angles (degrees) that bring the tool axis k onto machine +Z:
@@ -220,19 +212,22 @@ Toolpath toolpath(const AnyMotion& motion, const ToolpathOptions& o) {
   tp.angle_tol_deg = o.angle_tol_deg;
   tp.feed = o.feed;
   tp.path = o.output;
-  // Length of the exact trajectory, and the chords measured against it.
+  // The arc length of the exact trajectory up to every sample, and the chords measured
+  // against it.
+  std::vector<double> arc{0.0};
   for (std::size_t i = 0; i + 1 < tp.samples.size(); ++i) {
     const double t0 = tp.samples[i].t, t1 = tp.samples[i + 1].t;
+    double len = 0;
     for (const auto& [node, w] : sweep::detail::gauss_legendre())
-      tp.path_length +=
-          w * (t1 - t0) / 2 * src.exact_velocity((t0 + t1) / 2 + (t1 - t0) / 2 * node).norm();
+      len += w * (t1 - t0) / 2 * src.exact_velocity((t0 + t1) / 2 + (t1 - t0) / 2 * node).norm();
+    arc.push_back(arc.back() + len * k);
     for (int s = 1; s < 32; ++s)
       tp.max_chord_measured = std::max(
           tp.max_chord_measured,
           sweep::detail::point_segment_distance(src.exact_point(t0 + (t1 - t0) * s / 32),
                                                 tp.samples[i].point, tp.samples[i + 1].point));
   }
-  tp.path_length *= k;
+  tp.path_length = arc.back();
   tp.max_chord_measured *= k;
   for (auto& s : tp.samples) s.point *= k;
   if (!o.rotary.empty()) {
@@ -250,19 +245,12 @@ Toolpath toolpath(const AnyMotion& motion, const ToolpathOptions& o) {
   switch (f) {
     case CamFormat::csv: {
       os << "t,x,y,z,i,j,k" << (o.arc_length ? ",s" : "") << "\n";
-      double s_len = 0;
       for (std::size_t i = 0; i < tp.samples.size(); ++i) {
         const auto& p = tp.samples[i];
-        if (i > 0) {
-          const double t0 = tp.samples[i - 1].t, t1 = p.t;
-          for (const auto& [node, w] : sweep::detail::gauss_legendre())
-            s_len += w * (t1 - t0) / 2 *
-                     src.exact_velocity((t0 + t1) / 2 + (t1 - t0) / 2 * node).norm() * k;
-        }
         os << num(p.t, 12) << "," << num(p.point(0), 9) << "," << num(p.point(1), 9) << ","
            << num(p.point(2), 9) << "," << num(p.axis(0), 12) << "," << num(p.axis(1), 12) << ","
            << num(p.axis(2), 12);
-        if (o.arc_length) os << "," << num(s_len, 9);
+        if (o.arc_length) os << "," << num(arc[i], 9);
         os << "\n";
       }
       break;

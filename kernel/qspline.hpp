@@ -14,6 +14,7 @@
 // with C_k the scheme's blending functions; C~_0 = 1 for both schemes.
 #pragma once
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <algorithm>
 #include <array>
@@ -194,6 +195,23 @@ struct QuaternionSpline {
     const auto k = static_cast<std::size_t>(s);
     return ctrl[k] * exp_pure(omega[k] * c1) * exp_pure(omega[k + 1] * c2) *
            exp_pure(omega[k + 2] * c3);
+  }
+
+  /// The image at u of the point x of the moving space.
+  Eigen::Vector3d place(double u, const Eigen::Vector3d& x) const {
+    return rotate(rotation(u), x) + position(u);
+  }
+
+  /// The velocity at u of the point x of the moving space: omega x (R x) + d position / du.
+  Eigen::Vector3d point_velocity(double u, const Eigen::Vector3d& x) const {
+    return angular_velocity(u).cross(rotate(rotation(u), x)) + velocity(u);
+  }
+
+  /// continuity(k) for every interior key, in order (what a fit of the motion keeps).
+  std::vector<int> interior_continuity() const {
+    std::vector<int> c;
+    for (std::size_t k = 1; k + 1 < knots.size(); ++k) c.push_back(continuity(k));
+    return c;
   }
 
   /// The velocity of the moving origin at u, d position / du.

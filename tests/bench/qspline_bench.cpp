@@ -80,15 +80,13 @@ BENCHMARK(BM_Frames)->Args({0, 401})->Args({1, 401})->Args({2, 101})->Unit(bench
 
 void BM_Fit(benchmark::State& state) {
   const QuaternionSpline s = build(static_cast<int>(state.range(0)), keys(10));
-  std::vector<int> continuity;
-  for (std::size_t k = 1; k + 1 < s.knots.size(); ++k) continuity.push_back(s.continuity(k));
   const std::vector<Eigen::Vector3d> corners{{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {0, 1, 0}};
   qmotion::sweep::FrameFitOptions o;
   o.tol = std::pow(10.0, -static_cast<double>(state.range(1))) * 10;  // the size is about 10
   qmotion::sweep::FrameFit f;
   for (auto _ : state)
-    f = qmotion::sweep::fit_frames([&](double t) { return s.frame(t); }, s.knots, continuity,
-                                   corners, o);
+    f = qmotion::sweep::fit_frames([&](double t) { return s.frame(t); }, s.knots,
+                                   s.interior_continuity(), corners, o);
   state.counters["poles"] = static_cast<double>(f.matrix.ctrl().size());
   state.counters["spans"] = f.spans;
   state.SetLabel(std::string(kNames[state.range(0)]) + " tol 1e-" + std::to_string(state.range(1)));

@@ -241,6 +241,9 @@ TEST(QSpline, VelocityIsTheDerivativeOfThePositionAndFrameIsTheRigidMap) {
       const Eigen::Vector4d img = s.frame(x) * Eigen::Vector4d(1, y(0), y(1), y(2));
       EXPECT_EQ(img(0), 1.0);
       EXPECT_LE((img.tail<3>() - (kernel::rotate(s.rotation(x), y) + s.position(x))).norm(), 1e-12);
+      EXPECT_LE((s.place(x, y) - img.tail<3>()).norm(), 1e-12);
+      const V3 fdy = (s.place(x + h, y) - s.place(x - h, y)) / (2 * h);
+      EXPECT_LE((s.point_velocity(x, y) - fdy).norm(), 1e-6 * (1 + fdy.norm())) << "u = " << x;
     }
   }
   // Continuity in u: 2 for uniform knots; the quintic's unequal spans are C0 in u.

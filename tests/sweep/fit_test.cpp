@@ -28,11 +28,7 @@ QuaternionSpline spline(kernel::QSplineScheme scheme) {
   return kernel::quintic_spline(q, p, {0, 0.6, 2, 2.4, 4, 5}, std::vector<double>(6, 0.5));
 }
 
-std::vector<int> continuity(const QuaternionSpline& s) {
-  std::vector<int> c;
-  for (std::size_t k = 1; k + 1 < s.knots.size(); ++k) c.push_back(s.continuity(k));
-  return c;
-}
+std::vector<int> continuity(const QuaternionSpline& s) { return s.interior_continuity(); }
 
 /// The largest deviation of the fitted trajectories of `pts` from the spline's at 3000
 /// random parameters: independent of the fit's own grids.
