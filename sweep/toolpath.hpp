@@ -47,6 +47,22 @@ inline double angle_between(const Eigen::Vector3d& u, const Eigen::Vector3d& v) 
   return std::atan2(u.cross(v).norm(), u.dot(v));
 }
 
+/// The Bernstein coefficients over the local [s0, s1] (0 <= s0 < s1 <= 1) of the polynomial
+/// with coefficients c over [0, 1], by two de Casteljau splits (O(n^2), no blossoms).
+inline void sub_bezier(const std::vector<Eigen::Vector4d>& c, double s0, double s1,
+                       std::vector<Eigen::Vector4d>& out) {
+  out = c;
+  const std::size_t n = c.size() - 1;
+  if (s0 > 0)  // keep [s0, 1]: the right side of the triangle
+    for (std::size_t r = 1; r <= n; ++r)
+      for (std::size_t i = 0; i + r <= n; ++i) out[i] = out[i] + s0 * (out[i + 1] - out[i]);
+  if (s1 < 1) {  // keep [s0, s1] of it: the left side
+    const double u = (s1 - s0) / (1 - s0);
+    for (std::size_t r = 1; r <= n; ++r)
+      for (std::size_t i = n; i >= r; --i) out[i] = out[i - 1] + u * (out[i] - out[i - 1]);
+  }
+}
+
 }  // namespace detail
 
 /// Cutter-location points along the homogeneous trajectory `h` (w, w x; positive weights)
@@ -77,6 +93,14 @@ inline SampledToolpath sample_toolpath(const kernel::BSpline<Eigen::Vector4d>& h
   auto axis = [&](double t) {
     return Eigen::Vector3d(kernel::evaluate(d, t).tail<3>().normalized());
   };
+  // The Bezier pieces of h and d on the common spans, computed once; a part of a span is
+  // cut from its piece by de Casteljau (detail::sub_bezier).
+  std::vector<std::vector<Eigen::Vector4d>> hpieces, dpieces;
+  for (std::size_t k = 0; k + 1 < breaks.size(); ++k) {
+    hpieces.push_back(kernel::bezier_piece(h, breaks[k], breaks[k + 1]).coeffs());
+    dpieces.push_back(kernel::bezier_piece(d, breaks[k], breaks[k + 1]).coeffs());
+  }
+  std::vector<Eigen::Vector4d> part;
   SampledToolpath out;
   // The certified chord and angle bounds of [t0, t1].
   auto bounds = [&](double t0, double t1, const Eigen::Vector3d& p0, const Eigen::Vector3d& p1) {
@@ -87,18 +111,22 @@ inline SampledToolpath sample_toolpath(const kernel::BSpline<Eigen::Vector4d>& h
     double u = t0;
     while (u < t1) {
       const double next = first != breaks.end() ? std::min(*first, t1) : t1;
+      const std::size_t span = static_cast<std::size_t>(first - breaks.begin()) - 1;
+      const double xa = breaks[span], len = breaks[span + 1] - xa;
       for (int k = 0; k < opt.subdivisions; ++k) {
         const double u0 = u + (next - u) * k / opt.subdivisions;
         const double u1 =
             k + 1 == opt.subdivisions ? next : u + (next - u) * (k + 1) / opt.subdivisions;
         if (!(u1 > u0)) continue;
-        const auto hp = kernel::bezier_piece(h, u0, u1);
-        for (const auto& c : hp.coeffs()) {
+        const double s0 = std::clamp((u0 - xa) / len, 0.0, 1.0),
+                     s1 = std::clamp((u1 - xa) / len, 0.0, 1.0);
+        detail::sub_bezier(hpieces[span], s0, s1, part);
+        for (const auto& c : part) {
           if (!(c(0) > 0)) return std::pair<double, double>(HUGE_VAL, HUGE_VAL);
           chord = std::max(chord, detail::point_segment_distance(c.tail<3>() / c(0), p0, p1));
         }
-        const auto dp = kernel::bezier_piece(d, u0, u1);
-        for (const auto& c : dp.coeffs()) gens.push_back(c.tail<3>());
+        detail::sub_bezier(dpieces[span], s0, s1, part);
+        for (const auto& c : part) gens.push_back(c.tail<3>());
       }
       u = next;
       if (first != breaks.end()) ++first;
