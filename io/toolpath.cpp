@@ -1,12 +1,15 @@
 // io/toolpath.cpp
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <functional>
 #include <qmotion/io/atomic_file.hpp>
 #include <qmotion/io/toolpath.hpp>
 #include <qmotion/io/units.hpp>
 #include <qmotion/kernel/error.hpp>
+#include <qmotion/sweep/cam_nurbs.hpp>
 #include <qmotion/sweep/fit.hpp>
 #include <qmotion/sweep/solid.hpp>
 #include <qmotion/sweep/surface.hpp>
@@ -48,6 +51,15 @@ void check_options(const ToolpathOptions& o, CamFormat f) {
   if (!o.rotary.empty() && f != CamFormat::gcode)
     throw Error(Errc::invalid_input, "--rotary is for G-code output (.nc, .ngc)");
   if (o.c_hold && o.rotary.empty()) throw Error(Errc::invalid_input, "--c-hold is for --rotary ac");
+  if (o.nurbs && f != CamFormat::gcode)
+    throw Error(Errc::invalid_input, "--nurbs is for G-code output (.nc, .ngc)");
+  if (o.nurbs && !o.rotary.empty())
+    throw Error(Errc::invalid_input,
+                "--nurbs writes 3-axis G06.2 blocks; it does not combine with --rotary");
+  if (o.nurbs && o.max_step > 0)
+    throw Error(Errc::invalid_input, "--max-step caps linear moves; it does not apply to --nurbs");
+  if (o.arc_length && f != CamFormat::csv)
+    throw Error(Errc::invalid_input, "--arc-length is for CSV output (.csv)");
 }
 
 /// The motion as the toolpath needs it: its homogeneous point and axis trajectories (for
@@ -58,6 +70,8 @@ struct PathSource {
   std::function<Eigen::Vector3d(double)> exact_velocity;
   double fit_error = 0;
   std::string units;
+  std::vector<double> breaks;  ///< the motion's breakpoints and its continuity inside
+  std::vector<int> continuity;
 };
 
 PathSource source(const kernel::Motion<double>& m, const ToolpathOptions& o, double tol) {
@@ -71,6 +85,10 @@ PathSource source(const kernel::Motion<double>& m, const ToolpathOptions& o, dou
   const auto d =
       sweep::trajectories(m, {Eigen::Vector4d(0, o.axis(0), o.axis(1), o.axis(2))}).front();
   const auto dh = kernel::derivative(h);
+  std::vector<double> breaks = h.breakpoints();
+  std::vector<int> continuity;
+  for (std::size_t i = 1; i + 1 < breaks.size(); ++i)
+    continuity.push_back(kernel::continuity_at(h, breaks[i]));
   return PathSource{h,
                     d,
                     [h](double t) {
@@ -79,7 +97,9 @@ PathSource source(const kernel::Motion<double>& m, const ToolpathOptions& o, dou
                     },
                     [h, dh](double t) { return sweep::detail::point_and_tangent(h, dh, t).second; },
                     0.0,
-                    m.units};
+                    m.units,
+                    std::move(breaks),
+                    std::move(continuity)};
 }
 
 PathSource source(const QSplineMotion& m, const ToolpathOptions& o, double tol) {
@@ -102,7 +122,9 @@ PathSource source(const QSplineMotion& m, const ToolpathOptions& o, double tol) 
                     [&s, x](double t) { return s.place(t, x); },
                     [&s, x](double t) { return s.point_velocity(t, x); },
                     fit.max_deviation,
-                    m.units};
+                    m.units,
+                    s.knots,
+                    s.interior_continuity()};
 }
 
 /// The table-tilting A/C angles (degrees) that bring the tool axis k onto machine +Z:
@@ -162,9 +184,126 @@ void apt_line(std::ostringstream& os, const std::string& s) {
   os << rest << "\n";
 }
 
+/// The length of the exact trajectory over [t0, t1] (Gauss-Legendre on the velocity).
+double arc_length(const PathSource& src, double t0, double t1) {
+  double len = 0;
+  for (const auto& [node, w] : sweep::detail::gauss_legendre())
+    len += w * (t1 - t0) / 2 * src.exact_velocity((t0 + t1) / 2 + (t1 - t0) / 2 * node).norm();
+  return len;
+}
+
+/// The fewest decimals (at least `least`) that print every value so that it reads back
+/// unchanged.
+int exact_decimals(const std::vector<double>& v, int least) {
+  for (int d = least; d < 17; ++d)
+    if (std::all_of(v.begin(), v.end(),
+                    [&](double x) { return std::strtod(num(x, d).c_str(), nullptr) == x; }))
+      return d;
+  return 17;
+}
+
+/// Decimals of the NURBS G-code's coordinates and weights.
+constexpr double kNurbsQuantum = 1e6;
+
+/// `--nurbs`: the trajectory as a NURBS of degree <= 3 (sweep::cam_nurbs) within the
+/// tolerance `tol` (the motion's unit) less the quaternion spline's fit, certified for the
+/// numbers as written; measured against the exact motion at 64 points per span; Fanuc
+/// G06.2 blocks into os.
+void nurbs_toolpath(Toolpath& tp, const PathSource& src, double k, double tol,
+                    std::ostringstream& os) {
+  sweep::CamNurbsOptions no;
+  no.tol = tol - src.fit_error;
+  no.written = [k](const Eigen::Vector4d& v) {
+    const double w = std::round(v(0) * kNurbsQuantum) / kNurbsQuantum;
+    Eigen::Vector3d x = v.tail<3>() / v(0) * k;
+    for (int i = 0; i < 3; ++i) x(i) = std::round(x(i) * kNurbsQuantum) / kNurbsQuantum;
+    Eigen::Vector4d r;
+    r << w, w * x / k;
+    return r;
+  };
+  const sweep::CamNurbs cn =
+      sweep::cam_nurbs(src.h, src.exact_point, src.breaks, src.continuity, no);
+  NurbsToolpath nt;
+  nt.curve = kernel::map_coeffs(cn.curve, [k](const Eigen::Vector4d& v) {
+    Eigen::Vector4d r;
+    r << v(0), v.tail<3>() * k;
+    return r;
+  });
+  nt.t_knots = cn.t_knots;
+  nt.exact = cn.exact;
+  nt.spans = cn.spans;
+  nt.max_deviation_bound = (cn.bound + src.fit_error) * k;
+  for (const auto& v : nt.curve.ctrl())
+    if (!(v(0) >= 1e-4 && v(0) <= 99.9999))
+      throw Error(Errc::internal, "a NURBS weight outside 0.0001..99.9999: " + num(v(0)));
+  // Dense confirmation and the path length, span by span (span j of the curve stands for
+  // span j of t_knots).
+  std::vector<double> xt = cn.t_knots;
+  xt.erase(std::unique(xt.begin(), xt.end()), xt.end());
+  const std::vector<double> xc = nt.curve.breakpoints();
+  for (std::size_t j = 0; j + 1 < xt.size(); ++j) {
+    const auto piece = kernel::bezier_piece(nt.curve, xc[j], xc[j + 1]);
+    for (int s = 0; s <= 64; ++s) {
+      const Eigen::Vector4d c = kernel::evaluate(piece, xc[j] + (xc[j + 1] - xc[j]) * s / 64);
+      const Eigen::Vector3d e = src.exact_point(xt[j] + (xt[j + 1] - xt[j]) * s / 64) * k;
+      nt.max_deviation_measured =
+          std::max(nt.max_deviation_measured, (Eigen::Vector3d(c.tail<3>() / c(0)) - e).norm());
+    }
+    for (int s = 0; s < 4; ++s)
+      tp.path_length += k * arc_length(src, xt[j] + (xt[j + 1] - xt[j]) * s / 4,
+                                       xt[j] + (xt[j + 1] - xt[j]) * (s + 1) / 4);
+  }
+  // The blocks: the first control point is the current position (a rapid move there), the
+  // first block carries G06.2, the order P, the first knot and the feed; every control point
+  // its knot; the last `order` knots stand alone.
+  const auto& c = nt.curve;
+  const int order = c.degree() + 1, kd = exact_decimals(c.knots(), 9);
+  const std::size_t n = c.ctrl().size();
+  std::ostringstream head;
+  head.precision(3);
+  head << "(qmotion toolpath: NURBS of degree " << c.degree() << ", " << n << " control points, "
+       << nt.spans << (nt.spans == 1 ? " span, " : " spans, ")
+       << (nt.exact ? "the exact trajectory" : "a fit")
+       << ", certified deviation <= " << nt.max_deviation_bound << " " << tp.units << ")\n";
+  os << head.str() << (tp.units == "in" ? "G20" : "G21") << " G90 G17 G94\n";
+  auto xyz = [](const Eigen::Vector4d& v) {
+    return " X" + num(v(1) / v(0)) + " Y" + num(v(2) / v(0)) + " Z" + num(v(3) / v(0));
+  };
+  os << "G0" << xyz(c.ctrl().front()) << "\n";
+  for (std::size_t i = 0; i < n; ++i)
+    os << (i == 0 ? "G06.2 P" + std::to_string(order) + " " : "") << "K" << num(c.knots()[i], kd)
+       << xyz(c.ctrl()[i]) << " R" << num(c.ctrl()[i](0)) << (i == 0 ? " F" + num(tp.feed, 4) : "")
+       << "\n";
+  for (std::size_t i = n; i < c.knots().size(); ++i) os << "K" << num(c.knots()[i], kd) << "\n";
+  os << "M2\n";
+  tp.nurbs = std::move(nt);
+}
+
 }  // namespace
 
 json Toolpath::report() const {
+  if (nurbs) {
+    double lo = HUGE_VAL, hi = 0;
+    for (const auto& v : nurbs->curve.ctrl()) {
+      lo = std::min(lo, v(0));
+      hi = std::max(hi, v(0));
+    }
+    return json{{"path", path},
+                {"nurbs", true},
+                {"degree", nurbs->curve.degree()},
+                {"control_points", nurbs->curve.ctrl().size()},
+                {"spans", nurbs->spans},
+                {"exact", nurbs->exact},
+                {"min_weight", lo},
+                {"max_weight", hi},
+                {"units", units},
+                {"path_length", path_length},
+                {"feed", feed},
+                {"machining_time_min", path_length / feed},
+                {"chord_tolerance", chord_tol},
+                {"max_deviation_bound", nurbs->max_deviation_bound},
+                {"max_deviation_measured", nurbs->max_deviation_measured}};
+  }
   json j{{"path", path},
          {"points", samples.size()},
          {"segments", samples.empty() ? 0 : samples.size() - 1},
@@ -200,6 +339,22 @@ Toolpath toolpath(const AnyMotion& motion, const ToolpathOptions& o) {
   const double k = unit_factor(munits, tp.units);  // motion unit -> output unit
   const double tol = o.chord_tol / k;              // in the motion's unit
   const PathSource src = std::visit([&](const auto& m) { return source(m, o, tol); }, motion);
+  tp.chord_tol = o.chord_tol;
+  tp.angle_tol_deg = o.angle_tol_deg;
+  tp.feed = o.feed;
+  tp.path = o.output;
+  if (o.nurbs && o.chord_tol < 10 / kNurbsQuantum) {
+    std::ostringstream m;
+    m << "--chord-tol " << o.chord_tol << ": --nurbs writes 6 decimals, so it certifies "
+      << "tolerances from 1e-05 (in the output unit)";
+    throw Error(Errc::invalid_input, m.str());
+  }
+  if (o.nurbs) {
+    std::ostringstream os;
+    nurbs_toolpath(tp, src, k, tol, os);
+    write_file_atomic(o.output, os.str());
+    return tp;
+  }
   sweep::SamplerOptions so;
   so.chord_tol = tol - src.fit_error;
   so.angle_tol = o.angle_tol_deg * kPi / 180;
@@ -208,19 +363,12 @@ Toolpath toolpath(const AnyMotion& motion, const ToolpathOptions& o) {
   tp.samples = sampled.samples;
   tp.max_chord_bound = (sampled.max_chord_bound + src.fit_error) * k;
   tp.max_angle_bound_deg = sampled.max_angle_bound * 180 / kPi;
-  tp.chord_tol = o.chord_tol;
-  tp.angle_tol_deg = o.angle_tol_deg;
-  tp.feed = o.feed;
-  tp.path = o.output;
   // The arc length of the exact trajectory up to every sample, and the chords measured
   // against it.
   std::vector<double> arc{0.0};
   for (std::size_t i = 0; i + 1 < tp.samples.size(); ++i) {
     const double t0 = tp.samples[i].t, t1 = tp.samples[i + 1].t;
-    double len = 0;
-    for (const auto& [node, w] : sweep::detail::gauss_legendre())
-      len += w * (t1 - t0) / 2 * src.exact_velocity((t0 + t1) / 2 + (t1 - t0) / 2 * node).norm();
-    arc.push_back(arc.back() + len * k);
+    arc.push_back(arc.back() + arc_length(src, t0, t1) * k);
     for (int s = 1; s < 32; ++s)
       tp.max_chord_measured = std::max(
           tp.max_chord_measured,

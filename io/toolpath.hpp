@@ -4,7 +4,9 @@
 #pragma once
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <qmotion/io/qspline.hpp>
+#include <qmotion/kernel/bspline.hpp>
 #include <qmotion/sweep/toolpath.hpp>
 #include <string>
 #include <vector>
@@ -22,14 +24,30 @@ struct ToolpathOptions {
   bool arc_length = false;                          ///< CSV: add the arc length s
   std::string rotary;   ///< G-code: "" (3-axis) or "ac" (table-tilting A/C)
   bool c_hold = false;  ///< --rotary ac: keep the previous C where the axis is vertical
+  /// G-code: the trajectory as Fanuc-style G06.2 NURBS blocks of degree <= 3 (exact where
+  /// the trajectory has that degree, else a cubic fit) within chord_tol, certified (3-axis).
+  bool nurbs = false;
   /// The unit of the output and of chord_tol, max_step and feed (default: the motion's;
   /// APT and G-code: mm or in, a motion in another unit is written in mm).
   std::string units;
 };
 
+/// The NURBS of `--nurbs` as written.
+struct NurbsToolpath {
+  /// Homogeneous poles (w, w x) in the output unit and knots on [0, 1], as written.
+  kernel::BSpline<Eigen::Vector4d> curve =
+      kernel::BSpline<Eigen::Vector4d>::make(0, {0.0, 1.0}, {Eigen::Vector4d(1, 0, 0, 0)});
+  std::vector<double> t_knots;  ///< the knots in the motion's parameter
+  bool exact = false;           ///< the trajectory itself, only rounded
+  int spans = 0;
+  double max_deviation_bound = 0;     ///< certified (plus the fit for a quaternion spline)
+  double max_deviation_measured = 0;  ///< dense evaluation against the exact motion
+};
+
 /// What was written: the points with their parameters and machine angles, and the report.
 struct Toolpath {
-  std::vector<sweep::ToolpathSample> samples;  ///< in the output unit
+  std::vector<sweep::ToolpathSample> samples;  ///< in the output unit (none with nurbs)
+  std::optional<NurbsToolpath> nurbs;          ///< options.nurbs: the curve written
   std::vector<double> a_deg, c_deg;            ///< --rotary ac: machine angles per sample
   double path_length = 0;                      ///< of the exact trajectory (Gauss-Legendre)
   double max_chord_bound = 0;                  ///< certified (plus the fit for a quaternion spline)

@@ -36,6 +36,10 @@ Command add_toolpath(CLI::App& app) {
                   "+Z, pivot at the workpiece origin; C unwrapped, the branch kept continuous)");
   sub->add_flag("--c-hold", o->options.c_hold,
                 "--rotary ac: keep the previous C where the axis is vertical (else refused)");
+  sub->add_flag("--nurbs", o->options.nurbs,
+                "G-code: Fanuc-style G06.2 NURBS blocks of degree <= 3 instead of G1 moves: the "
+                "exact trajectory where its degree allows, else a cubic fit, within --chord-tol "
+                "(certified for the numbers as written; 3-axis)");
   sub->add_option(
       "--units", o->options.units,
       "Write in U and read --chord-tol, --max-step and --feed in U: mm, in (APT, G-code) "
@@ -55,9 +59,15 @@ Command add_toolpath(CLI::App& app) {
             if (!o->feed.empty()) opt.feed = io::parse_number_text(o->feed, "--feed").value;
             const auto tp = io::toolpath(io::load_any_motion(o->motion), opt);
             std::cout << tp.report().dump(2) << "\n";
-            std::cerr << "qmotion: wrote " << tp.path << " (" << tp.samples.size()
-                      << " points, chord deviation <= " << tp.max_chord_bound << " " << tp.units
-                      << ")\n";
+            if (tp.nurbs)
+              std::cerr << "qmotion: wrote " << tp.path << " (NURBS of degree "
+                        << tp.nurbs->curve.degree() << ", " << tp.nurbs->curve.ctrl().size()
+                        << " control points, deviation <= " << tp.nurbs->max_deviation_bound << " "
+                        << tp.units << ")\n";
+            else
+              std::cerr << "qmotion: wrote " << tp.path << " (" << tp.samples.size()
+                        << " points, chord deviation <= " << tp.max_chord_bound << " " << tp.units
+                        << ")\n";
             return 0;
           }};
 }

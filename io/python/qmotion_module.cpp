@@ -152,8 +152,10 @@ json result_json(const qm::io::ExportResult& r) {
 py::object toolpath_call(const qm::io::AnyMotion& motion, const std::string& path,
                          const py::object& point, const py::object& axis, double chord_tol,
                          double angle_tol, double max_step, double feed, bool arc_length,
-                         const std::string& rotary, bool c_hold, const std::string& units) {
+                         const std::string& rotary, bool c_hold, const std::string& units,
+                         bool nurbs) {
   qm::io::ToolpathOptions o;
+  o.nurbs = nurbs;
   o.units = units;
   o.output = path;
   o.point = vec3(point, "point");
@@ -591,34 +593,38 @@ PYBIND11_MODULE(qmotion, m) {
       "`qmotion toolpath`: cutter-location points along the trajectory of point with the tool "
       "axis R(t) axis, each chord within chord_tol of the exact trajectory and each axis within "
       "angle_tol degrees of the chord's blend (certified from control points), written to path "
-      "(.apt/.cls, .csv, .nc/.ngc; rotary='ac' for a table-tilting A/C machine). Returns the "
-      "report dict: points, path_length, machining_time_min, max_chord_deviation_bound, ...";
+      "(.apt/.cls, .csv, .nc/.ngc; rotary='ac' for a table-tilting A/C machine; nurbs=True for "
+      "G06.2 NURBS blocks of degree <= 3 with a certified deviation). Returns the report dict: "
+      "points, path_length, machining_time_min, max_chord_deviation_bound, ... (with nurbs: "
+      "degree, control_points, spans, exact, max_deviation_bound, max_deviation_measured)";
   m.def(
       "toolpath",
       [](const PyMotion& p, const std::string& path, const py::object& point,
          const py::object& axis, double chord_tol, double angle_tol, double max_step, double feed,
-         bool arc_length, const std::string& rotary, bool c_hold, const std::string& units) {
+         bool arc_length, const std::string& rotary, bool c_hold, const std::string& units,
+         bool nurbs) {
         return toolpath_call(p.motion, path, point, axis, chord_tol, angle_tol, max_step, feed,
-                             arc_length, rotary, c_hold, units);
+                             arc_length, rotary, c_hold, units, nurbs);
       },
       py::arg("motion"), py::arg("path"), py::arg("point"),
       py::arg("axis") = std::vector<double>{0, 0, 1}, py::arg("chord_tol"),
       py::arg("angle_tol") = 0.5, py::arg("max_step") = 0.0, py::arg("feed") = 1000.0,
       py::arg("arc_length") = false, py::arg("rotary") = "", py::arg("c_hold") = false,
-      py::arg("units") = "", toolpath_doc);
+      py::arg("units") = "", py::arg("nurbs") = false, toolpath_doc);
   m.def(
       "toolpath",
       [](const qm::io::QSplineMotion& q, const std::string& path, const py::object& point,
          const py::object& axis, double chord_tol, double angle_tol, double max_step, double feed,
-         bool arc_length, const std::string& rotary, bool c_hold, const std::string& units) {
+         bool arc_length, const std::string& rotary, bool c_hold, const std::string& units,
+         bool nurbs) {
         return toolpath_call(q, path, point, axis, chord_tol, angle_tol, max_step, feed, arc_length,
-                             rotary, c_hold, units);
+                             rotary, c_hold, units, nurbs);
       },
       py::arg("motion"), py::arg("path"), py::arg("point"),
       py::arg("axis") = std::vector<double>{0, 0, 1}, py::arg("chord_tol"),
       py::arg("angle_tol") = 0.5, py::arg("max_step") = 0.0, py::arg("feed") = 1000.0,
       py::arg("arc_length") = false, py::arg("rotary") = "", py::arg("c_hold") = false,
-      py::arg("units") = "", toolpath_doc);
+      py::arg("units") = "", py::arg("nurbs") = false, toolpath_doc);
 
 #ifdef QMOTION_WITH_CGAL
   m.def(

@@ -1,7 +1,7 @@
 // tests/bench/toolpath_bench.cpp: the guaranteed toolpath sampler (certified chords and
 // axes, sweep::sample_toolpath) in points per second along the 40-pose helix's B-spline
 // motion, and the time to write a 10^4-point toolpath (APT, CSV, G-code) through
-// io::toolpath (--max-step sets the count).
+// io::toolpath (--max-step sets the count); NURBS G-code (--nurbs) against G1 moves.
 #include <benchmark/benchmark.h>
 
 #include <filesystem>
@@ -59,6 +59,29 @@ void BM_Write10k(benchmark::State& state) {
   std::filesystem::remove(o.output);
 }
 BENCHMARK(BM_Write10k)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
+
+/// --nurbs: the certified cubic (sweep::cam_nurbs: fit, rounding, certificate) and the
+/// G-code, against the linear toolpath at the same chord tolerance (angle tolerance 89
+/// degrees, so that only the chord decides).
+void BM_Nurbs(benchmark::State& state) {
+  const qm::io::AnyMotion m = helix();
+  qm::io::ToolpathOptions o;
+  o.output = (std::filesystem::temp_directory_path() / "qmotion_bench_tpn.ngc").string();
+  o.point = Eigen::Vector3d(1, 0, 2);
+  o.chord_tol = std::pow(10.0, -static_cast<double>(state.range(0)));
+  o.angle_tol_deg = 89;
+  o.nurbs = state.range(1) != 0;
+  std::size_t blocks = 0;
+  for (auto _ : state) {
+    const auto tp = qm::io::toolpath(m, o);
+    blocks = tp.nurbs ? tp.nurbs->curve.ctrl().size() : tp.samples.size();
+  }
+  state.counters["blocks"] = static_cast<double>(blocks);
+  state.SetLabel(std::string(o.nurbs ? "G06.2" : "G1") + ", chord tol 1e-" +
+                 std::to_string(state.range(0)) + " mm");
+  std::filesystem::remove(o.output);
+}
+BENCHMARK(BM_Nurbs)->ArgsProduct({{1, 2, 3, 4}, {0, 1}})->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -650,6 +650,9 @@ TEST(Cli, ToolpathBadInputsExitTwoAndLeaveNoFile) {
       {{"--chord-tol", "0.01", "--rotary", "bc"}, "--rotary bc"},
       {{"--chord-tol", "0.01", "--angle-tol", "120"}, "--angle-tol"},
       {{"--chord-tol", "0.01", "--feed", "0"}, "--feed"},
+      {{"--chord-tol", "0.01", "--nurbs", "--rotary", "ac"}, "--nurbs"},
+      {{"--chord-tol", "0.01", "--nurbs", "--max-step", "2"}, "--max-step"},
+      {{"--chord-tol", "0.01", "--arc-length"}, "--arc-length"},
   };
   for (const auto& c : cases) {
     std::vector<std::string> args{"toolpath", m, "--point", "1,2,3", "-o", out};
@@ -664,6 +667,33 @@ TEST(Cli, ToolpathBadInputsExitTwoAndLeaveNoFile) {
                           (scratch_dir() / "tp.gcode").string()});
   EXPECT_EQ(fmt.status, 2);
   EXPECT_NE(fmt.err.find(".ngc"), std::string::npos) << fmt.err;
+  const std::string csv = (scratch_dir() / "tp_bad.csv").string();
+  const Result nurbs_csv =
+      run({"toolpath", m, "--point", "1,2,3", "--chord-tol", "0.01", "--nurbs", "-o", csv});
+  EXPECT_EQ(nurbs_csv.status, 2);
+  EXPECT_NE(nurbs_csv.err.find("--nurbs"), std::string::npos) << nurbs_csv.err;
+  EXPECT_FALSE(fs::exists(csv));
+}
+
+TEST(Cli, ToolpathNurbsReportsItsCertifiedDeviation) {
+  const std::string m = (scratch_dir() / "tpn_motion.json").string();
+  ASSERT_EQ(run({"interpolate", test_data("poses/helix_40.json"), "-o", m}).status, 0);
+  const std::string ngc = (scratch_dir() / "tpn.ngc").string();
+  const Result r = run({"toolpath", m, "--point", "1,0,2", "--chord-tol", "0.001", "--nurbs",
+                        "--feed", "600", "-o", ngc});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json report = json::parse(r.out);
+  EXPECT_TRUE(report["nurbs"].get<bool>());
+  EXPECT_LE(report["degree"].get<int>(), 3);
+  EXPECT_LE(report["max_deviation_bound"].get<double>(), 0.001);
+  EXPECT_LE(report["max_deviation_measured"].get<double>(),
+            report["max_deviation_bound"].get<double>());
+  EXPECT_NEAR(report["machining_time_min"].get<double>(), report["path_length"].get<double>() / 600,
+              1e-12);
+  std::ifstream f(ngc);
+  std::size_t blocks = 0;
+  for (std::string line; std::getline(f, line);) blocks += line.rfind("K", 0) == 0;
+  EXPECT_EQ(blocks + 1, report["control_points"].get<std::size_t>() + 4);  // + the G06.2 block
 }
 
 TEST(Cli, QsplineBadInputsExitWithTheirStatusAndLeaveNoFile) {

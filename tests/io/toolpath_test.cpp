@@ -248,6 +248,147 @@ TEST(Toolpath, UnitsConvertTheOutputAndTheTolerances) {
   EXPECT_TRUE(throws_error([&] { io::toolpath(m, o); }, Errc::invalid_input, {"--units cm"}));
 }
 
+/// A Fanuc-style G06.2 NURBS as the test reads it back from the G-code file.
+struct GNurbs {
+  int order = 0;
+  std::vector<double> knots, weights;
+  std::vector<V3> points;
+  V3 start = V3::Constant(NAN);  // the G0 position before the NURBS
+};
+
+/// The value of the letter's word in a block ("X1.5" -> 1.5), NaN without it.
+double word(const std::string& block, char letter) {
+  std::istringstream ss(block);
+  for (std::string w; ss >> w;)
+    if (w.size() > 1 && w[0] == letter) return std::stod(w.substr(1));
+  return NAN;
+}
+
+GNurbs read_g06(const std::string& path) {
+  std::ifstream f(path);
+  GNurbs g;
+  bool in = false;
+  for (std::string line; std::getline(f, line);) {
+    if (line.empty() || line[0] == '(') continue;
+    if (line.rfind("G0 ", 0) == 0) g.start = V3(word(line, 'X'), word(line, 'Y'), word(line, 'Z'));
+    if (line.rfind("G06.2 ", 0) == 0) {
+      in = true;
+      g.order = static_cast<int>(word(line, 'P'));
+      EXPECT_FALSE(std::isnan(word(line, 'F'))) << "the first block carries the feed";
+    }
+    if (!in || line.rfind("M2", 0) == 0) continue;
+    g.knots.push_back(word(line, 'K'));
+    if (!std::isnan(word(line, 'X'))) {
+      EXPECT_TRUE(g.knots.size() == g.points.size() + 1) << "a control point after bare knots";
+      g.points.emplace_back(word(line, 'X'), word(line, 'Y'), word(line, 'Z'));
+      g.weights.push_back(word(line, 'R'));
+    }
+  }
+  return g;
+}
+
+/// The test's own rational de Boor evaluation of the G-code NURBS at s.
+V3 eval_g06(const GNurbs& g, double s) {
+  const int p = g.order - 1, n = static_cast<int>(g.points.size());
+  int j = p;
+  while (j + 1 < n && g.knots[static_cast<std::size_t>(j + 1)] <= s) ++j;
+  std::vector<Eigen::Vector4d> d;
+  for (int i = j - p; i <= j; ++i) {
+    const double w = g.weights[static_cast<std::size_t>(i)];
+    d.emplace_back(w, w * g.points[static_cast<std::size_t>(i)](0),
+                   w * g.points[static_cast<std::size_t>(i)](1),
+                   w * g.points[static_cast<std::size_t>(i)](2));
+  }
+  for (int r = 1; r <= p; ++r)
+    for (int i = p; i >= r; --i) {
+      const double k0 = g.knots[static_cast<std::size_t>(j - p + i)],
+                   k1 = g.knots[static_cast<std::size_t>(j + 1 + i - r)];
+      const double al = (s - k0) / (k1 - k0);
+      d[static_cast<std::size_t>(i)] =
+          (1 - al) * d[static_cast<std::size_t>(i - 1)] + al * d[static_cast<std::size_t>(i)];
+    }
+  const Eigen::Vector4d y = d[static_cast<std::size_t>(p)];
+  return y.tail<3>() / y(0);
+}
+
+TEST(Toolpath, NurbsBlocksParseBackAsClampedCubicsWithinTheTolerance) {
+  io::QSplineOptions qo;
+  qo.scheme = "kks";
+  const std::string two = scratch("quarter.json").string();
+  std::ofstream(two) << R"({"poses": [
+    {"t": 0, "position": [0, 0, 0], "rotation": {"quaternion": [1, 0, 0, 0]}},
+    {"t": 1, "position": [0, 0, 4], "rotation": {"axis_angle": {"axis": [0, 0, 1], "angle_deg": 90}}}]})";
+  const std::vector<std::pair<std::string, io::AnyMotion>> motions{
+      {"quarter", io::interpolate(io::read_poses(two), {}).motion},  // a rational cubic path
+      {"bezier", rational("poses/five_positions.json")},
+      {"bspline", rational("poses/helix_40.json")},
+      {"c1", rational("poses/helix_40.json", "c1")},
+      {"kks", io::qspline(io::read_poses(test_data("helix_10.json")), qo)}};
+  const V3 x(1, -2, 3);
+  for (const auto& [name, m] : motions)
+    for (double tol : {1e-1, 1e-2, 1e-3, 1e-4}) {
+      SCOPED_TRACE(name + " " + std::to_string(tol));
+      io::ToolpathOptions o;
+      o.output = scratch("nurbs.ngc").string();
+      o.point = x;
+      o.chord_tol = tol;
+      o.nurbs = true;
+      const io::Toolpath tp = io::toolpath(m, o);
+      ASSERT_TRUE(tp.nurbs.has_value());
+      const GNurbs g = read_g06(o.output);
+      const std::size_t n = g.points.size(), P = static_cast<std::size_t>(g.order);
+      ASSERT_GE(g.order, 2);
+      EXPECT_LE(g.order, 4);  // degree <= 3
+      ASSERT_EQ(g.knots.size(), n + P);
+      EXPECT_EQ(g.start, g.points.front());  // the first control point is the current position
+      for (std::size_t i = 1; i < P; ++i) {  // clamped
+        EXPECT_EQ(g.knots[i], g.knots[0]);
+        EXPECT_EQ(g.knots[n + i], g.knots[n]);
+      }
+      for (std::size_t i = 0; i + 1 < g.knots.size(); ++i) EXPECT_LE(g.knots[i], g.knots[i + 1]);
+      for (std::size_t i = 0; i + P < g.knots.size(); ++i) EXPECT_LT(g.knots[i], g.knots[i + P]);
+      for (double w : g.weights) {
+        EXPECT_GE(w, 0.0001);
+        EXPECT_LE(w, 99.9999);
+      }
+      // The written knots stand for the motion's parameters t_knots (an affine map); the
+      // NURBS, evaluated from the file, follows the exact trajectory under the
+      // piecewise-affine map between them within the tolerance, which bounds its distance
+      // from the trajectory both ways.
+      const auto& tk = tp.nurbs->t_knots;
+      ASSERT_EQ(tk.size(), g.knots.size());
+      const double ta = tk.front(), tb = tk.back();
+      for (std::size_t i = 0; i < tk.size(); ++i)
+        EXPECT_NEAR(g.knots[i], (tk[i] - ta) / (tb - ta), 1e-8);
+      double dev = 0;
+      for (std::size_t i = P - 1; i < n; ++i) {
+        const double s0 = g.knots[i], s1 = g.knots[i + 1];
+        if (!(s1 > s0)) continue;
+        for (int k = 0; k <= 200; ++k) {
+          const double s = s0 + (s1 - s0) * k / 200;
+          const double t = tk[i] + (tk[i + 1] - tk[i]) * k / 200;
+          dev = std::max(dev, (eval_g06(g, s) - place(m, t, x)).norm());
+        }
+      }
+      EXPECT_LE(dev, tol);
+      EXPECT_LE(dev, tp.nurbs->max_deviation_bound * (1 + 1e-6));  // the bound bounds
+      EXPECT_LE(tp.nurbs->max_deviation_bound, tol);
+      EXPECT_NEAR(tp.nurbs->max_deviation_measured, dev, 0.05 * dev + 1e-12);
+      EXPECT_EQ(tp.nurbs->curve.ctrl().size(), n);
+      if (name == "quarter") {  // the trajectory itself: one rational cubic
+        EXPECT_TRUE(tp.nurbs->exact);
+        EXPECT_EQ(n, 4u);
+      }
+      // Far fewer blocks than the linear moves for the same tolerance.
+      if (name == "bspline") {
+        o.nurbs = false;
+        o.output = scratch("lines.ngc").string();
+        o.angle_tol_deg = 89;  // the chord alone decides
+        EXPECT_LT(5 * n, io::toolpath(m, o).samples.size());
+      }
+    }
+}
+
 TEST(Toolpath, BadOptionsAreRefusedAndWriteNothing) {
   const io::AnyMotion m = rational("poses/five_positions.json");
   const std::string out = scratch("bad.ngc").string();
@@ -268,6 +409,28 @@ TEST(Toolpath, BadOptionsAreRefusedAndWriteNothing) {
                            Errc::invalid_input, {".ngc"}));
   EXPECT_TRUE(throws_error(with([](io::ToolpathOptions& o) { o.angle_tol_deg = 0; }),
                            Errc::invalid_input, {"--angle-tol"}));
+  EXPECT_TRUE(throws_error(with([](io::ToolpathOptions& o) {
+                             o.nurbs = true;
+                             o.output = "x.csv";
+                           }),
+                           Errc::invalid_input, {"--nurbs", "G-code"}));
+  EXPECT_TRUE(throws_error(with([](io::ToolpathOptions& o) {
+                             o.nurbs = true;
+                             o.rotary = "ac";
+                           }),
+                           Errc::invalid_input, {"--nurbs", "--rotary"}));
+  EXPECT_TRUE(throws_error(with([](io::ToolpathOptions& o) {
+                             o.nurbs = true;
+                             o.max_step = 1;
+                           }),
+                           Errc::invalid_input, {"--max-step", "--nurbs"}));
+  EXPECT_TRUE(throws_error(with([](io::ToolpathOptions& o) {
+                             o.nurbs = true;
+                             o.chord_tol = 1e-6;
+                           }),
+                           Errc::invalid_input, {"--chord-tol 1e-06", "6 decimals"}));
+  EXPECT_TRUE(throws_error(with([](io::ToolpathOptions& o) { o.arc_length = true; }),
+                           Errc::invalid_input, {"--arc-length", "CSV"}));
   // A pure rotation about z keeps the axis (0, 0, 1) vertical: C is undefined there.
   const std::string poses = scratch("spin.json").string();
   std::ofstream(poses) << R"({"poses": [

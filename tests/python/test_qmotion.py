@@ -237,6 +237,12 @@ def test_compare_lists_every_scheme_like_the_cli():
         assert f["max_key_residual"] <= 1e-10
 
 
+def save_q(q, tmp_path):
+    path = tmp_path / "q.json"
+    q.save(str(path))
+    return path
+
+
 def test_toolpath_is_the_clis(tmp_path):
     m = qmotion.interpolate(data("poses/helix_40.json"))
     motion = tmp_path / "m.json"
@@ -252,6 +258,18 @@ def test_toolpath_is_the_clis(tmp_path):
     q = qmotion.qspline(data("helix_10.json"), "kks")
     report = qmotion.toolpath(q, str(tmp_path / "q.csv"), point=[0, 0, 0], chord_tol=0.001)
     assert report["max_chord_deviation_bound"] <= 0.001
+    nurbs = qmotion.toolpath(q, str(tmp_path / "n.ngc"), point=[1, 0, 2], chord_tol=0.001, nurbs=True)
+    r = cli("toolpath", save_q(q, tmp_path), "--point", "1,0,2",
+            "--chord-tol", "0.001", "--nurbs", "-o", tmp_path / "n2.ngc")
+    assert r.returncode == 0, r.stderr
+    # The saved spline reads back within rounding: the same blocks, the same figures to 1e-9.
+    theirs = json.loads(r.stdout)
+    assert nurbs.keys() == theirs.keys()
+    for k in nurbs:
+        if k != "path":
+            assert nurbs[k] == pytest.approx(theirs[k], rel=1e-9), k
+    assert len(open(tmp_path / "n.ngc").readlines()) == len(open(tmp_path / "n2.ngc").readlines())
+    assert nurbs["degree"] <= 3 and nurbs["max_deviation_bound"] <= 0.001
     with pytest.raises(ValueError, match="--axis"):
         qmotion.toolpath(m, str(tmp_path / "z.csv"), point=[0, 0, 0], axis=[0, 0, 0], chord_tol=0.1)
 
