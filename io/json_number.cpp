@@ -4,7 +4,6 @@
 #include <fstream>
 #include <qmotion/io/json_number.hpp>
 #include <qmotion/kernel/error.hpp>
-#include <regex>
 #include <sstream>
 #include <vector>
 
@@ -158,31 +157,79 @@ Number parse_number_text(const std::string& raw, const std::string& where) {
     throw Error(Errc::invalid_input, where + ": a number of " + std::to_string(raw.size()) +
                                          " characters (at most " + std::to_string(kMaxNumberChars) +
                                          ")");
-  static const std::regex decimal(R"(\s*([+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?)\s*)");
-  static const std::regex ratio(R"(\s*([+-]?\d+)\s*/\s*([+-]?\d+)\s*)");
-  std::smatch m;
-  if (std::regex_match(raw, m, decimal)) {
-    const std::string t = m[1].str();
-    const double v = std::strtod(t.c_str(), nullptr);
-    if (!std::isfinite(v))
-      throw Error(Errc::invalid_input,
-                  where + ": number '" + raw + "' is out of the range of double");
-    return Number{t, v};
+  // The grammar, scanned by hand (this runs for every number of every file):
+  //   decimal: ws [+-]? (digits [. digits*] | . digits) ([eE] [+-]? digits)? ws
+  //   ratio:   ws [+-]? digits ws / ws [+-]? digits ws
+  const char* const b = raw.data();
+  const char* const e = b + raw.size();
+  const auto space = [](char c) {
+    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v';
+  };
+  const auto digits = [e](const char*& p) {
+    const char* s = p;
+    while (p < e && *p >= '0' && *p <= '9') ++p;
+    return p > s;
+  };
+  const char* p = b;
+  while (p < e && space(*p)) ++p;
+  const char* const start = p;
+  if (p < e && (*p == '+' || *p == '-')) ++p;
+  const char* q = p;
+  const bool integral = digits(q);
+  // decimal
+  {
+    const char* d = q;
+    bool ok = integral;
+    if (d < e && *d == '.') {
+      ++d;
+      ok = digits(d) || integral;
+    }
+    if (ok && d < e && (*d == 'e' || *d == 'E')) {
+      const char* x = d + 1;
+      if (x < e && (*x == '+' || *x == '-')) ++x;
+      ok = digits(x);
+      d = x;
+    }
+    const char* const end = d;
+    while (d < e && space(*d)) ++d;
+    if (ok && d == e) {
+      const std::string t(start, end);
+      const double v = std::strtod(t.c_str(), nullptr);
+      if (!std::isfinite(v))
+        throw Error(Errc::invalid_input,
+                    where + ": number '" + raw + "' is out of the range of double");
+      return Number{t, v};
+    }
   }
-  if (std::regex_match(raw, m, ratio)) {
-    const std::string p = m[1].str(), q = m[2].str();
-    if (q.find_first_not_of("+-0") == std::string::npos)
-      throw Error(Errc::invalid_input, where + ": rational '" + raw + "' has a zero denominator");
-    Number n{p + "/" + q, 0.0};
+  // ratio
+  if (integral) {
+    const std::string num(start, q);
+    const char* d = q;
+    while (d < e && space(*d)) ++d;
+    if (d < e && *d == '/') {
+      ++d;
+      while (d < e && space(*d)) ++d;
+      const char* const den0 = d;
+      if (d < e && (*d == '+' || *d == '-')) ++d;
+      const bool den_digits = digits(d);
+      const std::string den(den0, d);
+      while (d < e && space(*d)) ++d;
+      if (den_digits && d == e) {
+        if (den.find_first_not_of("+-0") == std::string::npos)
+          throw Error(Errc::invalid_input,
+                      where + ": rational '" + raw + "' has a zero denominator");
+        Number n{num + "/" + den, 0.0};
 #ifdef QMOTION_WITH_CGAL
-    n.value = kernel::to_double(exact_from_text(n.text));
+        n.value = kernel::to_double(exact_from_text(n.text));
 #else
-    n.value = std::strtod(p.c_str(), nullptr) / std::strtod(q.c_str(), nullptr);
+        n.value = std::strtod(num.c_str(), nullptr) / std::strtod(den.c_str(), nullptr);
 #endif
-    if (!std::isfinite(n.value))
-      throw Error(Errc::invalid_input,
-                  where + ": number '" + raw + "' is out of the range of double");
-    return n;
+        if (!std::isfinite(n.value))
+          throw Error(Errc::invalid_input,
+                      where + ": number '" + raw + "' is out of the range of double");
+        return n;
+      }
+    }
   }
   std::string lower = raw;
   for (auto& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));

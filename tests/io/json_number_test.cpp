@@ -38,6 +38,29 @@ TEST(JsonNumber, RationalTextIsExactAndCanonical) {
   EXPECT_DOUBLE_EQ(parse_number_text("1/3", "x").value, 1.0 / 3.0);
 }
 
+TEST(JsonNumber, TheScannerAcceptsExactlyTheGrammar) {
+  // decimal: ws [+-]? (digits [. digits*] | . digits) ([eE] [+-]? digits)? ws
+  // ratio:   ws [+-]? digits ws / ws [+-]? digits ws; the text kept is the number, trimmed.
+  const std::vector<std::pair<std::string, std::string>> good{
+      {"0", "0"},           {"-1.", "-1."},      {"+.5", "+.5"}, {" 2.5e-3 ", "2.5e-3"},
+      {"\t7E+2\n", "7E+2"}, {"1.e5", "1.e5"},    {"3/4", "3/4"}, {" -3 / +4 ", "-3/+4"},
+      {"010", "010"},       {"1e0001", "1e0001"}};
+  for (const auto& [in, text] : good) {
+    SCOPED_TRACE(in);
+    EXPECT_EQ(parse_number_text(in, "x").text, text);
+    EXPECT_EQ(parse_number_text(in, "x").value, text.find('/') == std::string::npos
+                                                    ? std::strtod(text.c_str(), nullptr)
+                                                    : parse_number_text(text, "x").value);
+  }
+  EXPECT_DOUBLE_EQ(parse_number_text(" -3 / +4 ", "x").value, -0.75);
+  for (const std::string bad :
+       {"",   " ",  ".",     "-",     "+-1",   "1e",   "1e+", "e5",  ".e5",  "1..2", "1.2.3", "1 2",
+        "3/", "/4", "3/4/5", "1.5/2", "3/4.0", "0x10", "1,5", "- 1", "1e5x", "3 /",  "\"1\""}) {
+    SCOPED_TRACE("'" + bad + "'");
+    EXPECT_TRUE(throws_error([&] { parse_number_text(bad, "f"); }, Errc::invalid_input, {"f"}));
+  }
+}
+
 TEST(JsonNumber, BadNumbersNameTheField) {
   EXPECT_TRUE(throws_error([] { parse_number_text("NaN", "poses[1].t"); }, Errc::invalid_input,
                            {"poses[1].t", "finite"}));
