@@ -8,6 +8,7 @@
 #include <qmotion/io/atomic_file.hpp>
 #include <qmotion/io/export.hpp>
 #include <qmotion/io/json_number.hpp>
+#include <qmotion/io/mesh.hpp>
 #include <qmotion/io/nurbs_json.hpp>
 #include <qmotion/io/occt.hpp>
 #include <qmotion/io/self_intersection.hpp>
@@ -26,7 +27,7 @@ namespace {
 
 using json = nlohmann::json;
 
-enum class Format { json, step, iges, stl };
+enum class Format { json, step, iges, mesh };
 
 std::string lower_ext(const std::string& path) {
   std::string e = std::filesystem::path(path).extension().string();
@@ -39,10 +40,25 @@ Format output_format(const std::string& path, bool allow_stl) {
   if (e == ".json") return Format::json;
   if (e == ".step" || e == ".stp") return Format::step;
   if (e == ".igs" || e == ".iges") return Format::iges;
-  if (allow_stl && e == ".stl") return Format::stl;
-  throw Error(Errc::invalid_input, "-o " + path +
-                                       ": expected a .json, .step, .stp, .igs or .iges file name" +
-                                       std::string(allow_stl ? " (or .stl)" : ""));
+  if (allow_stl && is_mesh_path(path)) return Format::mesh;
+  throw Error(Errc::invalid_input,
+              "-o " + path + ": expected a .json, .step, .stp, .igs or .iges file name" +
+                  std::string(allow_stl ? " (or a .stl, .obj or .ply mesh)" : ""));
+}
+
+/// A surface's output format, with the mesh options checked before any work.
+Format surface_format(const ExportOptions& opt) {
+  const Format f = output_format(opt.output, true);
+  const bool mesh_option = opt.deflection != 0 || opt.angle_deg != 20 || opt.ascii;
+  if (f != Format::mesh && mesh_option)
+    throw Error(Errc::invalid_input,
+                "--deflection, --angle and --ascii are for mesh output (.stl, .obj, .ply)");
+  if (f == Format::mesh && (!(opt.deflection >= 0) || !std::isfinite(opt.deflection) ||
+                            (opt.deflection == 0 && std::signbit(opt.deflection))))
+    throw Error(Errc::invalid_input, "--deflection: expected a positive length");
+  if (f == Format::mesh && !(opt.angle_deg > 0 && opt.angle_deg <= 90))
+    throw Error(Errc::invalid_input, "--angle: expected degrees in (0, 90]");
+  return f;
 }
 
 std::string fmt(double x) {
@@ -215,38 +231,6 @@ int count_poles(const std::vector<sweep::NurbsSurface<double>>& faces) {
   return n;
 }
 
-/// A 64 x 64 lattice of triangles per face, ASCII STL.
-void write_stl(const std::string& path, const std::vector<sweep::NurbsSurface<double>>& faces,
-               int n) {
-  std::ostringstream os;
-  os.precision(17);
-  os << "solid qmotion\n";
-  auto tri = [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
-    Eigen::Vector3d nrm = (b - a).cross(c - a);
-    if (nrm.norm() > 0) nrm.normalize();
-    os << " facet normal " << nrm.x() << " " << nrm.y() << " " << nrm.z() << "\n  outer loop\n";
-    for (const auto* p : {&a, &b, &c})
-      os << "   vertex " << p->x() << " " << p->y() << " " << p->z() << "\n";
-    os << "  endloop\n endfacet\n";
-  };
-  for (const auto& s : faces) {
-    const double u0 = s.knots_u.front(), u1 = s.knots_u.back(), v0 = s.knots_v.front(),
-                 v1 = s.knots_v.back();
-    std::vector<std::vector<Eigen::Vector3d>> g(static_cast<std::size_t>(n + 1));
-    for (int i = 0; i <= n; ++i)
-      for (int j = 0; j <= n; ++j)
-        g[static_cast<std::size_t>(i)].push_back(
-            sweep::evaluate(s, u0 + (u1 - u0) * i / n, v0 + (v1 - v0) * j / n));
-    for (std::size_t i = 0; i < static_cast<std::size_t>(n); ++i)
-      for (std::size_t j = 0; j < static_cast<std::size_t>(n); ++j) {
-        tri(g[i][j], g[i + 1][j], g[i + 1][j + 1]);
-        tri(g[i][j], g[i + 1][j + 1], g[i][j + 1]);
-      }
-  }
-  os << "endsolid qmotion\n";
-  write_file_atomic(path, os.str());
-}
-
 }  // namespace
 
 Eigen::Vector3d parse_point(const std::string& text, const std::string& flag) {
@@ -284,7 +268,7 @@ void write_curve(const sweep::NurbsCurve<double>& c, Format f, const std::string
     case Format::iges:
       write_iges(path, c, info);
       break;
-    case Format::stl:
+    case Format::mesh:
       break;
   }
 }
@@ -410,9 +394,26 @@ void write_surfaces(const std::vector<sweep::NurbsSurface<double>>& surfaces, Fo
     case Format::iges:
       write_iges(opt.output, shell, info);
       break;
-    case Format::stl:
-      write_stl(opt.output, surfaces, 64);
+    case Format::mesh: {
+      double size = 0;
+      for (const auto& f : shell.faces) {
+        Eigen::Vector3d lo = f.points.front().front(), hi = lo;
+        for (const auto& row : f.points)
+          for (const auto& p : row) {
+            lo = lo.cwiseMin(p);
+            hi = hi.cwiseMax(p);
+          }
+        size = std::max(size, (hi - lo).norm());
+      }
+      MeshOptions mo;
+      mo.deflection = opt.deflection > 0 ? opt.deflection : 1e-3 * size;
+      mo.angle_deg = opt.angle_deg;
+      mo.ascii = opt.ascii;
+      Mesh mesh = mesh_shell_within(shell, mo, opt.output);
+      write_mesh(opt.output, mesh, opt.ascii);
+      r.mesh = std::move(mesh);
       break;
+    }
   }
   r.faces = static_cast<int>(shell.faces.size()) + (opt.solid ? 2 : 0);
   r.poles = count_poles(shell.faces);
@@ -508,7 +509,7 @@ std::vector<sweep::NurbsSurface<double>> sweep_nurbs(const kernel::Motion<double
 
 ExportResult export_surface(const kernel::Motion<double>& lm, const sweep::Profile<double>& profile,
                             const std::string& profile_name, const ExportOptions& opt) {
-  const Format f = output_format(opt.output, true);
+  const Format f = surface_format(opt);
   ExportResult r;
   r.path = opt.output;
   double tol = 0;
@@ -906,7 +907,7 @@ ExportResult export_trajectory(const QSplineMotion& m, const Eigen::Vector3d& po
 
 ExportResult export_surface(const QSplineMotion& m, const sweep::Profile<double>& profile,
                             const std::string& profile_name, const ExportOptions& opt) {
-  const Format f = output_format(opt.output, true);
+  const Format f = surface_format(opt);
   ExportResult r;
   r.path = opt.output;
   QSplineFit q;

@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <qmotion/io/mesh.hpp>
 #include <qmotion/io/motion_json.hpp>
 #include <qmotion/io/qspline.hpp>
 #include <qmotion/io/self_intersection.hpp>
@@ -20,7 +21,7 @@ namespace qmotion::io {
 inline constexpr int kQSplineFitDegree = 5;
 
 struct ExportOptions {
-  std::string output;  ///< .json, .step/.stp, .igs/.iges (surfaces also .stl)
+  std::string output;  ///< .json, .step/.stp, .igs/.iges (surfaces also .stl, .obj, .ply)
   /// Approximate above this degree (-1: exact only); for a quaternion-spline motion, the
   /// degree of the fit (default kQSplineFitDegree).
   int max_degree = -1;
@@ -33,6 +34,11 @@ struct ExportOptions {
   /// Surfaces: a self-intersecting sweep is refused (Errc::numerical_failure), as --solid
   /// always does.
   bool fail_on_self_intersection = false;
+  /// Meshes: the largest deviation from the surfaces (absolute; 0: 1e-3 of the size), the
+  /// mesher's angular deflection in degrees, ASCII STL/PLY instead of binary.
+  double deflection = 0;
+  double angle_deg = 20;
+  bool ascii = false;
 };
 
 /// What was written, for messages and the demo's report.
@@ -52,6 +58,8 @@ struct ExportResult {
   std::optional<double> volume;            ///< --solid: the independent swept volume
   /// Surfaces: what the self-intersection check found (absent when not run).
   std::optional<SelfIntersection> self_intersection;
+  /// Meshes: what was written, with its measured deviation.
+  std::optional<Mesh> mesh;
 };
 
 /// The trajectory of the point as NURBS, exact at its minimal degree with positive weights

@@ -8,6 +8,7 @@
 #include <BRepCheck_Analyzer.hxx>
 #include <BRepGProp.hxx>
 #include <BRepLib.hxx>
+#include <BRepMesh_IncrementalMesh.hxx>
 #include <BRepTools_WireExplorer.hxx>
 #include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
@@ -29,6 +30,7 @@
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
 #include <Message_PrinterOStream.hxx>
+#include <Poly_Triangulation.hxx>
 #include <STEPControl_Controller.hxx>
 #include <STEPControl_Reader.hxx>
 #include <STEPControl_Writer.hxx>
@@ -60,12 +62,14 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <gp_Pln.hxx>
 #include <limits>
 #include <qmotion/io/atomic_file.hpp>
 #include <qmotion/io/json_number.hpp>
 #include <qmotion/io/occt.hpp>
 #include <qmotion/io/units.hpp>
 #include <qmotion/kernel/error.hpp>
+#include <qmotion/sweep/surface.hpp>
 #include <sstream>
 
 namespace qmotion::io {
@@ -523,6 +527,79 @@ void write_iges(const std::string& path, const sweep::NurbsShell<double>& s,
     const TopoDS_Shape shape = make_shell(s, path);
     write_iges_model(path, Handle(Standard_Transient)(), &shape, info);
   });
+}
+
+std::vector<FaceMesh> mesh_shell(const sweep::NurbsShell<double>& s, double deflection,
+                                 double angle, const std::string& path) {
+  std::vector<FaceMesh> out;
+  guarded(path, [&] {
+    const TopoDS_Shape shape = make_shell(s, path);
+    BRepMesh_IncrementalMesh mesher(shape, deflection, Standard_False, angle, Standard_True);
+    if (!mesher.IsDone()) throw Error(Errc::export_failed, path + ": OpenCASCADE's mesher failed");
+    for (TopExp_Explorer e(shape, TopAbs_FACE); e.More(); e.Next()) {
+      const TopoDS_Face& face = TopoDS::Face(e.Current());
+      TopLoc_Location loc;
+      const Handle(Poly_Triangulation) tri = BRep_Tool::Triangulation(face, loc);
+      if (tri.IsNull() || !tri->HasUVNodes())
+        throw Error(Errc::export_failed,
+                    path + ": OpenCASCADE's mesher left a face untriangulated");
+      FaceMesh fm;
+      const gp_Trsf t = loc.Transformation();
+      for (int i = 1; i <= tri->NbNodes(); ++i) {
+        const gp_Pnt p = tri->Node(i).Transformed(t);
+        const gp_Pnt2d q = tri->UVNode(i);
+        fm.nodes.emplace_back(p.X(), p.Y(), p.Z());
+        fm.uv.emplace_back(q.X(), q.Y());
+      }
+      const bool reversed = face.Orientation() == TopAbs_REVERSED;
+      for (int i = 1; i <= tri->NbTriangles(); ++i) {
+        int a = 0, b = 0, c = 0;
+        tri->Triangle(i).Get(a, b, c);
+        fm.triangles.push_back(reversed ? std::array<int, 3>{a - 1, c - 1, b - 1}
+                                        : std::array<int, 3>{a - 1, b - 1, c - 1});
+      }
+      const Handle(Geom_Surface) surf = BRep_Tool::Surface(face);
+      if (const Handle(Geom_Plane) plane = Handle(Geom_Plane)::DownCast(surf); !plane.IsNull()) {
+        const gp_Pln pl = plane->Pln().Transformed(t);
+        fm.plane_point = Eigen::Vector3d(pl.Location().X(), pl.Location().Y(), pl.Location().Z());
+        const gp_Dir n = pl.Axis().Direction();
+        fm.plane_normal = Eigen::Vector3d(n.X(), n.Y(), n.Z());
+      } else {
+        // The shell's face this one is: every (sampled) node inside its parameter
+        // rectangle and on its surface at the node's (u, v), the best fit of them (sewing
+        // keeps the surfaces and their parameters).
+        double best = HUGE_VAL;
+        const std::size_t step = std::max<std::size_t>(1, fm.nodes.size() / 32);
+        for (std::size_t k = 0; k < s.faces.size(); ++k) {
+          const auto& f = s.faces[k];
+          const double du = 1e-9 * (f.knots_u.back() - f.knots_u.front()),
+                       dv = 1e-9 * (f.knots_v.back() - f.knots_v.front());
+          double worst = 0;
+          for (std::size_t i = 0; i < fm.nodes.size() && worst < best; i += step) {
+            const Eigen::Vector2d q = fm.uv[i];
+            if (q(0) < f.knots_u.front() - du || q(0) > f.knots_u.back() + du ||
+                q(1) < f.knots_v.front() - dv || q(1) > f.knots_v.back() + dv) {
+              worst = HUGE_VAL;
+              break;
+            }
+            worst = std::max(
+                worst, (sweep::evaluate(f, std::clamp(q(0), f.knots_u.front(), f.knots_u.back()),
+                                        std::clamp(q(1), f.knots_v.front(), f.knots_v.back())) -
+                        fm.nodes[i])
+                           .norm());
+          }
+          if (worst < best) {
+            best = worst;
+            fm.face = static_cast<int>(k);
+          }
+        }
+        if (fm.face < 0)
+          throw Error(Errc::internal, path + ": a meshed face matches no face of the shell");
+      }
+      out.push_back(std::move(fm));
+    }
+  });
+  return out;
 }
 
 void write_step(const std::string& path, const std::vector<sweep::NurbsCurve<double>>& wire,

@@ -3,6 +3,7 @@
 // STEP and IGES through OpenCASCADE. No OpenCASCADE type appears here: handles, 1-based
 // arrays and knot/multiplicity pairs stay in occt.cpp (STYLE §4, §9).
 #include <Eigen/Core>
+#include <array>
 #include <functional>
 #include <qmotion/sweep/nurbs.hpp>
 #include <qmotion/sweep/shell.hpp>
@@ -47,6 +48,22 @@ void write_iges(const std::string& path, const sweep::NurbsShell<double>& s,
 /// A wire: the curves in order, joined end to start (a profile of several edges).
 void write_step(const std::string& path, const std::vector<sweep::NurbsCurve<double>>& wire,
                 const ExportInfo& info);
+
+/// One face of a shell as OpenCASCADE's mesher (BRepMesh_IncrementalMesh) triangulated it.
+struct FaceMesh {
+  int face = -1;  ///< the shell's face (index into faces) it lies on; -1: a planar cap
+  std::vector<Eigen::Vector3d> nodes;
+  std::vector<Eigen::Vector2d> uv;            ///< the nodes' (u, v) on that face's surface
+  std::vector<std::array<int, 3>> triangles;  ///< 0-based, counter-clockwise seen from outside
+  Eigen::Vector3d plane_point, plane_normal;  ///< a cap's plane
+};
+
+/// The shell (built as write_step builds it: sewn faces, with caps one oriented solid)
+/// triangulated within `deflection` (absolute) and `angle` (radians) by BRepMesh.
+/// Triangles follow the faces' orientation in the shape. Throws Errc::export_failed naming
+/// path when OpenCASCADE fails.
+std::vector<FaceMesh> mesh_shell(const sweep::NurbsShell<double>& s, double deflection,
+                                 double angle, const std::string& path);
 
 /// One face read back: its surface as NURBS, or a plane (a solid's cap).
 struct CadFace {

@@ -10,6 +10,7 @@
 #include <qmotion/io/export.hpp>
 #include <qmotion/io/interpolate.hpp>
 #include <qmotion/io/json_number.hpp>
+#include <qmotion/io/mesh.hpp>
 #include <qmotion/io/motion_info.hpp>
 #include <qmotion/io/motion_json.hpp>
 #include <qmotion/io/nurbs_json.hpp>
@@ -30,6 +31,7 @@
 #include <qmotion/kernel/qspline.hpp>
 #include <qmotion/kernel/quaternion.hpp>
 #include <qmotion/kernel/spline_interpolation.hpp>
+#include <qmotion/sweep/cam_nurbs.hpp>
 #include <qmotion/sweep/factors.hpp>
 #include <qmotion/sweep/profiles.hpp>
 #include <qmotion/sweep/shell.hpp>

@@ -141,6 +141,14 @@ json result_json(const qm::io::ExportResult& r) {
   if (r.approx_deviation) j["approximation_deviation"] = *r.approx_deviation;
   if (r.approx_tolerance) j["approximation_tolerance"] = *r.approx_tolerance;
   if (r.volume) j["volume"] = *r.volume;
+  if (r.mesh)
+    j["mesh"] = json{{"triangles", r.mesh->triangles.size()},
+                     {"vertices", r.mesh->vertices.size()},
+                     {"deflection", r.mesh->deflection},
+                     {"max_deviation", r.mesh->max_deviation},
+                     {"deviation_samples", r.mesh->deviation_samples},
+                     {"closed", r.mesh->closed},
+                     {"oriented", r.mesh->oriented}};
   if (r.self_intersection) {
     j["self_intersecting"] = r.self_intersection->found();
     if (r.self_intersection->found()) j["self_intersection"] = r.self_intersection->ranges();
@@ -422,18 +430,24 @@ PYBIND11_MODULE(qmotion, m) {
       "export",
       [](const PyMotion& p, const std::string& path, const py::object& profile,
          const py::object& point, int max_degree, double tol, const std::string& units,
-         bool single_face, bool solid) {
-        const auto opt = export_options(path, max_degree, tol, units, single_face, solid);
+         bool single_face, bool solid, double deflection, double angle, bool ascii) {
+        auto opt = export_options(path, max_degree, tol, units, single_face, solid);
+        opt.deflection = deflection;
+        opt.angle_deg = angle;
+        opt.ascii = ascii;
         return to_python(result_json(
             qm::io::export_geometry(p.motion, to_geometry(p.motion.units, profile, point), opt)));
       },
       py::arg("motion"), py::arg("path"), py::arg("profile") = py::none(),
       py::arg("point") = py::none(), py::arg("max_degree") = -1, py::arg("tol") = -1.0,
       py::arg("units") = "", py::arg("single_face") = false, py::arg("solid") = false,
+      py::arg("deflection") = 0.0, py::arg("angle") = 20.0, py::arg("ascii") = false,
       "Writes the trajectory of `point` or the sweep of `profile` to path (.json, .step/.stp, "
-      ".igs/.iges; sweeps also .stl), as `qmotion trajectory` / `qmotion sweep` do: STEP/IGES "
-      "shells split at C0 knots (single_face: one face per edge), solid=True for a closed "
-      "planar profile. Returns a dict: degrees, continuity, faces, poles, units, volume.");
+      ".igs/.iges; sweeps also a .stl/.obj/.ply mesh within deflection, default 1e-3 of the "
+      "size, angle in degrees, ascii STL/PLY), as `qmotion trajectory` / `qmotion sweep` do: "
+      "STEP/IGES shells split at C0 knots (single_face: one face per edge), solid=True for a "
+      "closed planar profile. Returns a dict: degrees, continuity, faces, poles, units, volume, "
+      "and for a mesh its triangles and measured max_deviation.");
 
   m.def(
       "demo", [](const std::string& dir) { return to_python(qm::io::write_demo(dir)); },
@@ -550,14 +564,18 @@ PYBIND11_MODULE(qmotion, m) {
       "export",
       [](const qm::io::QSplineMotion& q, const std::string& path, const py::object& profile,
          const py::object& point, int max_degree, double tol, const std::string& units,
-         bool single_face, bool solid) {
-        const auto opt = export_options(path, max_degree, tol, units, single_face, solid);
+         bool single_face, bool solid, double deflection, double angle, bool ascii) {
+        auto opt = export_options(path, max_degree, tol, units, single_face, solid);
+        opt.deflection = deflection;
+        opt.angle_deg = angle;
+        opt.ascii = ascii;
         return to_python(
             result_json(qm::io::export_geometry(q, to_geometry(q.units, profile, point), opt)));
       },
       py::arg("motion"), py::arg("path"), py::arg("profile") = py::none(),
       py::arg("point") = py::none(), py::arg("max_degree") = -1, py::arg("tol") = -1.0,
       py::arg("units") = "", py::arg("single_face") = false, py::arg("solid") = false,
+      py::arg("deflection") = 0.0, py::arg("angle") = 20.0, py::arg("ascii") = false,
       "For a QSpline: as for a Motion, the geometry fitted within tol; the dict adds "
       "approximation_deviation and approximation_tolerance.");
 

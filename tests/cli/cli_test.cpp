@@ -1001,6 +1001,26 @@ TEST(Cli, BadProfilesAndPolesLeaveNoFile) {
   const Result wrong_ext =
       run({"sweep", m.string(), "--profile", "circle:3", "-o", (scratch_dir() / "x.dxf").string()});
   EXPECT_EQ(wrong_ext.status, 2);
+  // Meshes: bad mesher options, and mesh options for a NURBS file.
+  for (const auto& [args, needle] : std::vector<std::pair<std::vector<std::string>, std::string>>{
+           {{"--deflection", "0"}, "--deflection"},
+           {{"--deflection", "-0.5"}, "--deflection"},
+           {{"--angle", "0"}, "--angle"},
+           {{"--angle", "120"}, "--angle"}}) {
+    for (const std::string ext : {".stl", ".obj", ".ply"}) {
+      const fs::path out = scratch_dir() / ("bad_mesh" + ext);
+      std::vector<std::string> a{"sweep", m.string(), "--profile", "circle:3", "-o", out.string()};
+      a.insert(a.end(), args.begin(), args.end());
+      const Result r = run(a);
+      EXPECT_EQ(r.status, 2) << r.err;
+      EXPECT_NE(r.err.find(needle), std::string::npos) << r.err;
+      EXPECT_FALSE(fs::exists(out));
+    }
+  }
+  const Result mesh_option = run({"sweep", m.string(), "--profile", "circle:3", "--deflection",
+                                  "0.1", "-o", (scratch_dir() / "x.step").string()});
+  EXPECT_EQ(mesh_option.status, 2);
+  EXPECT_NE(mesh_option.err.find("mesh output"), std::string::npos) << mesh_option.err;
   const Result both = run({"check", (scratch_dir() / "x.json").string(), "--motion", m.string()});
   EXPECT_EQ(both.status, 2);
 }

@@ -274,6 +274,15 @@ def test_toolpath_is_the_clis(tmp_path):
         qmotion.toolpath(m, str(tmp_path / "z.csv"), point=[0, 0, 0], axis=[0, 0, 0], chord_tol=0.1)
 
 
+def test_mesh_export_reports_its_deviation(tmp_path):
+    m = qmotion.interpolate(data("self_intersection/coil_open.json"))
+    r = qmotion.export(m, str(tmp_path / "tube.ply"), profile="circle:3", solid=True, deflection=0.1)
+    assert r["mesh"]["max_deviation"] <= 0.1
+    assert r["mesh"]["closed"] and r["mesh"]["oriented"]
+    with pytest.raises(ValueError, match="--deflection"):
+        qmotion.export(m, str(tmp_path / "x.stl"), profile="circle:3", deflection=-1)
+
+
 def test_demo_does_the_main_job(tmp_path):
     report = qmotion.demo(str(tmp_path / "demo"))
     assert len(report["exactness"]) == 9
