@@ -7,6 +7,7 @@
 #include <qmotion/io/atomic_file.hpp>
 #include <qmotion/io/compare.hpp>
 #include <qmotion/io/demo.hpp>
+#include <qmotion/io/evaluate.hpp>
 #include <qmotion/io/export.hpp>
 #include <qmotion/io/interpolate.hpp>
 #include <qmotion/io/json_number.hpp>

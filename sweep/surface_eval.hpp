@@ -58,6 +58,41 @@ class SurfaceEvaluator {
     return S;
   }
 
+  /// The grid S(us[i], vs[j]) for rows i in [row_begin, row_end), written row-major to
+  /// out[i * vs.size() + j]: per row the poles are contracted once with the u basis into the
+  /// homogeneous poles of the v-curve, then each point costs degree_v + 1 terms.
+  /// @pre every parameter inside the surface's rectangle
+  void grid(const std::vector<double>& us, const std::vector<double>& vs, Eigen::Vector3d* out,
+            std::size_t row_begin, std::size_t row_end) const {
+    const std::size_t nv = vs.size(), q1 = static_cast<std::size_t>(q_ + 1);
+    std::vector<int> vspan(nv);
+    std::vector<double> vbasis(nv * q1);
+    for (std::size_t j = 0; j < nv; ++j) {
+      vspan[j] = span(V_, q_, nv_, vs[j]);
+      const auto N = kernel::basis_functions(V_, vspan[j], q_, vs[j]);
+      std::copy(N.begin(), N.end(), vbasis.begin() + static_cast<std::ptrdiff_t>(j * q1));
+    }
+    std::vector<Eigen::Vector4d> col(static_cast<std::size_t>(nv_));
+    for (std::size_t i = row_begin; i < row_end; ++i) {
+      const int su = span(U_, p_, nu_, us[i]);
+      const auto N = kernel::basis_functions(U_, su, p_, us[i]);
+      for (int k = 0; k < nv_; ++k) {
+        Eigen::Vector4d c = Eigen::Vector4d::Zero();
+        for (int a = 0; a <= p_; ++a)
+          c += N[static_cast<std::size_t>(a)] *
+               h_[static_cast<std::size_t>((su - p_ + a) * nv_ + k)];
+        col[static_cast<std::size_t>(k)] = c;
+      }
+      for (std::size_t j = 0; j < nv; ++j) {
+        Eigen::Vector4d c = Eigen::Vector4d::Zero();
+        const double* M = &vbasis[j * q1];
+        const Eigen::Vector4d* C = &col[static_cast<std::size_t>(vspan[j] - q_)];
+        for (std::size_t b = 0; b < q1; ++b) c += M[b] * C[b];
+        out[i * nv + j] = c.tail<3>() / c(0);
+      }
+    }
+  }
+
   /// The distance from x to the surface point nearest it near (u, v): Gauss-Newton on
   /// |S(u, v) - x|^2 inside the parameter rectangle. Always the distance to a point of the
   /// surface, so never below the true distance; the true distance when it converges.

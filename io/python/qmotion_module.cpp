@@ -297,7 +297,29 @@ PYBIND11_MODULE(qmotion, m) {
             const Eigen::Vector3d p = qm::sweep::evaluate(s, u, v);
             return std::vector<double>{p(0), p(1), p(2)};
           },
-          py::arg("u"), py::arg("v"), "The point at (u, v)");
+          py::arg("u"), py::arg("v"), "The point at (u, v)")
+      .def(
+          "grid",
+          [](const qm::sweep::NurbsSurface<double>& s, const std::vector<double>& us,
+             const std::vector<double>& vs) {
+            std::vector<Eigen::Vector3d> pts;
+            {
+              py::gil_scoped_release release;
+              pts = qm::io::evaluate_grid(s, us, vs);
+            }
+            py::array_t<double> a({static_cast<py::ssize_t>(us.size()),
+                                   static_cast<py::ssize_t>(vs.size()), py::ssize_t(3)});
+            auto w = a.mutable_unchecked<3>();
+            for (std::size_t i = 0; i < us.size(); ++i)
+              for (std::size_t j = 0; j < vs.size(); ++j)
+                for (int c = 0; c < 3; ++c)
+                  w(static_cast<py::ssize_t>(i), static_cast<py::ssize_t>(j), c) =
+                      pts[i * vs.size() + j](c);
+            return a;
+          },
+          py::arg("us"), py::arg("vs"),
+          "The points at every (us[i], vs[j]): an array of shape (len(us), len(vs), 3), on all "
+          "cores");
 
   py::class_<PyMotion>(m, "Motion",
                        "A rational motion: its dual-quaternion curve, the factors it is the "

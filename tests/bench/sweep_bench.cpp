@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <qmotion/io/evaluate.hpp>
 #include <qmotion/io/json_number.hpp>
 #include <qmotion/io/motion_json.hpp>
 #include <qmotion/io/occt.hpp>
@@ -18,6 +19,9 @@
 #include <GeomAPI_PointsToBSplineSurface.hxx>
 #include <GeomAPI_ProjectPointOnSurf.hxx>
 #include <Geom_BSplineSurface.hxx>
+#include <TColStd_Array1OfInteger.hxx>
+#include <TColStd_Array1OfReal.hxx>
+#include <TColStd_Array2OfReal.hxx>
 #include <TColgp_Array2OfPnt.hxx>
 // clang-format on
 
@@ -112,6 +116,86 @@ void BM_Peer_OcctFitDegree16x2Surface(benchmark::State& st) {
   st.counters["max_deviation_mm"] = dev;
 }
 BENCHMARK(BM_Peer_OcctFitDegree16x2Surface)->Unit(benchmark::kMillisecond);
+
+/// The exact sweep of the demo's parabola along the 9-pose minimal-order motion (degree 16
+/// x 2) and a 1000 x 100 grid on it: our batch evaluator, serial and on every core, against
+/// OpenCASCADE's Geom_BSplineSurface::D0 point by point on the same surface and grid.
+struct GridCase {
+  sweep::NurbsSurface<double> s;
+  std::vector<double> us, vs;
+  GridCase() {
+    s = surface_from_file(motion_file(test_data("poses/helix_40.json"), 9,
+                                      kernel::TranslationMethod::minimal, "bench_grid.json"));
+    for (int i = 0; i < 1000; ++i)
+      us.push_back(s.knots_u.front() + (s.knots_u.back() - s.knots_u.front()) * i / 999);
+    for (int j = 0; j < 100; ++j)
+      vs.push_back(s.knots_v.front() + (s.knots_v.back() - s.knots_v.front()) * j / 99);
+  }
+};
+const GridCase& grid_case() {
+  static const GridCase g;
+  return g;
+}
+
+void BM_GridOurs(benchmark::State& st) {
+  const auto& g = grid_case();
+  for (auto _ : st) benchmark::DoNotOptimize(io::evaluate_grid(g.s, g.us, g.vs, st.range(0) != 0));
+  st.SetItemsProcessed(st.iterations() * static_cast<std::int64_t>(g.us.size() * g.vs.size()));
+  st.SetLabel(st.range(0) ? "all cores (oneTBB)" : "one core");
+}
+BENCHMARK(BM_GridOurs)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_Peer_GridOcctD0(benchmark::State& st) {
+  const auto& g = grid_case();
+  std::vector<double> ku, kv;
+  std::vector<int> mu, mv;
+  io::knots_to_distinct(g.s.knots_u, ku, mu);
+  io::knots_to_distinct(g.s.knots_v, kv, mv);
+  const int nu = static_cast<int>(g.s.points.size()), nv = static_cast<int>(g.s.points[0].size());
+  TColgp_Array2OfPnt poles(1, nu, 1, nv);
+  TColStd_Array2OfReal weights(1, nu, 1, nv);
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      const auto& p = g.s.points[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
+      poles.SetValue(i + 1, j + 1, gp_Pnt(p.x(), p.y(), p.z()));
+      weights.SetValue(i + 1, j + 1,
+                       g.s.weights[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)]);
+    }
+  TColStd_Array1OfReal KU(1, static_cast<int>(ku.size())), KV(1, static_cast<int>(kv.size()));
+  TColStd_Array1OfInteger MU(1, static_cast<int>(mu.size())), MV(1, static_cast<int>(mv.size()));
+  for (std::size_t i = 0; i < ku.size(); ++i) {
+    KU.SetValue(static_cast<int>(i) + 1, ku[i]);
+    MU.SetValue(static_cast<int>(i) + 1, mu[i]);
+  }
+  for (std::size_t i = 0; i < kv.size(); ++i) {
+    KV.SetValue(static_cast<int>(i) + 1, kv[i]);
+    MV.SetValue(static_cast<int>(i) + 1, mv[i]);
+  }
+  const Handle(Geom_BSplineSurface) occt =
+      new Geom_BSplineSurface(poles, weights, KU, KV, MU, MV, g.s.degree_u, g.s.degree_v);
+  // The two agree (checked once, outside the timing).
+  const auto ours = io::evaluate_grid(g.s, g.us, g.vs, false);
+  double diff = 0;
+  for (std::size_t i = 0; i < g.us.size(); i += 10)
+    for (std::size_t j = 0; j < g.vs.size(); j += 10) {
+      gp_Pnt p;
+      occt->D0(g.us[i], g.vs[j], p);
+      diff =
+          std::max(diff, (ours[i * g.vs.size() + j] - Eigen::Vector3d(p.X(), p.Y(), p.Z())).norm());
+    }
+  std::vector<gp_Pnt> out(g.us.size() * g.vs.size());
+  for (auto _ : st) {
+    for (std::size_t i = 0; i < g.us.size(); ++i)
+      for (std::size_t j = 0; j < g.vs.size(); ++j)
+        occt->D0(g.us[i], g.vs[j], out[i * g.vs.size() + j]);
+    benchmark::DoNotOptimize(out.data());
+  }
+  st.SetItemsProcessed(st.iterations() * static_cast<std::int64_t>(g.us.size() * g.vs.size()));
+  st.counters["max_difference_from_ours"] = diff;
+  st.SetLabel("one core, degree " + std::to_string(g.s.degree_u) + " x " +
+              std::to_string(g.s.degree_v));
+}
+BENCHMARK(BM_Peer_GridOcctD0)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 

@@ -10,10 +10,12 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <qmotion/io/evaluate.hpp>
 #include <qmotion/io/export.hpp>
 #include <qmotion/io/interpolate.hpp>
 #include <qmotion/io/poses.hpp>
 #include <qmotion/io/profiles.hpp>
+#include <qmotion/sweep/surface.hpp>
 #include <sstream>
 
 #include "io_test_util.hpp"
@@ -218,6 +220,33 @@ TEST(Mesh, EveryFormatHoldsTheSameTriangles) {
   }
   EXPECT_EQ(faces, n);
   EXPECT_EQ(verts, ply.mesh->vertices.size());
+}
+
+TEST(EvaluateGrid, EqualsPointwiseEvaluationSerialAndParallel) {
+  // The exact sweep of the coil by a circle: degree 9 x 2, C0 knots in v.
+  const auto faces = io::sweep_nurbs(coil(), io::read_profile("circle:3", "mm"));
+  const auto& s = faces.front();
+  std::vector<double> us, vs;
+  const double u0 = s.knots_u.front(), u1 = s.knots_u.back();
+  const double v0 = s.knots_v.front(), v1 = s.knots_v.back();
+  for (int i = 0; i <= 400; ++i) us.push_back(u0 + (u1 - u0) * i / 400);
+  for (int j = 0; j <= 60; ++j) vs.push_back(v0 + (v1 - v0) * j / 60);
+  for (double k : s.knots_v) vs.push_back(k);  // the knots themselves, C0 joints included
+  const auto serial = io::evaluate_grid(s, us, vs, false);
+  const auto parallel = io::evaluate_grid(s, us, vs, true);
+  ASSERT_EQ(serial.size(), us.size() * vs.size());
+  double worst = 0;
+  for (std::size_t i = 0; i < us.size(); i += 7)
+    for (std::size_t j = 0; j < vs.size(); ++j) {
+      const V3 ref = sweep::evaluate(s, us[i], vs[j]);
+      worst = std::max(worst, (serial[i * vs.size() + j] - ref).norm());
+    }
+  EXPECT_LE(worst, 1e-12 * 30);
+  for (std::size_t k = 0; k < serial.size(); ++k) ASSERT_EQ(serial[k], parallel[k]) << k;
+  EXPECT_TRUE(throws_error([&] { io::evaluate_grid(s, {u1 + 1}, vs); }, Errc::invalid_input,
+                           {"u[0]", "outside"}));
+  EXPECT_TRUE(
+      throws_error([&] { io::evaluate_grid(s, us, {NAN}); }, Errc::invalid_input, {"v[0]"}));
 }
 
 TEST(Mesh, BadMeshOptionsAreRefusedAndWriteNothing) {

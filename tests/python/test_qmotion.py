@@ -274,6 +274,20 @@ def test_toolpath_is_the_clis(tmp_path):
         qmotion.toolpath(m, str(tmp_path / "z.csv"), point=[0, 0, 0], axis=[0, 0, 0], chord_tol=0.1)
 
 
+def test_surface_grid_matches_pointwise_evaluation():
+    m = qmotion.interpolate(data("self_intersection/coil_open.json"))
+    s = qmotion.sweep(m, "circle:3")[0]
+    us = np.linspace(s.knots_u[0], s.knots_u[-1], 50)
+    vs = np.linspace(s.knots_v[0], s.knots_v[-1], 9)
+    g = s.grid(us, vs)
+    assert g.shape == (50, 9, 3)
+    for i in (0, 17, 49):
+        for j in (0, 4, 8):
+            assert np.allclose(g[i, j], s(us[i], vs[j]), rtol=0, atol=1e-11)
+    with pytest.raises(ValueError, match="outside"):
+        s.grid([s.knots_u[-1] + 1], vs)
+
+
 def test_mesh_export_reports_its_deviation(tmp_path):
     m = qmotion.interpolate(data("self_intersection/coil_open.json"))
     r = qmotion.export(m, str(tmp_path / "tube.ply"), profile="circle:3", solid=True, deflection=0.1)
