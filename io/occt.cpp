@@ -24,12 +24,15 @@
 #include <IGESData_IGESModel.hxx>
 #include <IGESData_IGESWriter.hxx>
 #include <IGESSelect_WorkLibrary.hxx>
+#include <IMeshTools_Parameters.hxx>
 #include <Interface_Check.hxx>
 #include <Interface_CheckIterator.hxx>
 #include <Interface_Static.hxx>
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
 #include <Message_PrinterOStream.hxx>
+#include <Message_ProgressIndicator.hxx>
+#include <Message_ProgressScope.hxx>
 #include <Poly_Triangulation.hxx>
 #include <STEPControl_Controller.hxx>
 #include <STEPControl_Reader.hxx>
@@ -67,6 +70,7 @@
 #include <qmotion/io/atomic_file.hpp>
 #include <qmotion/io/json_number.hpp>
 #include <qmotion/io/occt.hpp>
+#include <qmotion/io/progress.hpp>
 #include <qmotion/io/units.hpp>
 #include <qmotion/kernel/error.hpp>
 #include <qmotion/sweep/surface.hpp>
@@ -230,6 +234,20 @@ std::string extension(const std::string& path) {
   return lower(std::filesystem::path(path).extension().string());
 }
 
+/// OpenCASCADE's progress, forwarded to io::report_progress under a stage name (ended with
+/// fraction 1 when the indicator goes).
+class SinkIndicator : public Message_ProgressIndicator {
+ public:
+  explicit SinkIndicator(std::string stage) : stage_(std::move(stage)) {}
+  ~SinkIndicator() override { report_progress(stage_, 1.0); }
+  void Show(const Message_ProgressScope&, const Standard_Boolean) override {
+    report_progress(stage_, std::min(GetPosition(), 0.999));
+  }
+
+ private:
+  std::string stage_;
+};
+
 void write_step_shape(const std::string& path, const TopoDS_Shape& shape, const ExportInfo& info) {
   quiet_occt();
   const UnitNames u = unit_names(info.units);
@@ -245,7 +263,9 @@ void write_step_shape(const std::string& path, const TopoDS_Shape& shape, const 
   STEPControl_Writer writer;
   writer.Model(Standard_True)->SetLocalLengthUnit(u.mm);
   writer.Model()->SetWriteLengthUnit(u.mm);
-  if (writer.Transfer(shape, STEPControl_AsIs) != IFSelect_RetDone)
+  const Handle(SinkIndicator) progress = new SinkIndicator("STEP translation");
+  if (writer.Transfer(shape, STEPControl_AsIs, Standard_True, progress->Start()) !=
+      IFSelect_RetDone)
     throw Error(Errc::export_failed,
                 path + ": OpenCASCADE could not translate the geometry to STEP");
   APIHeaderSection_MakeHeader header(writer.Model());
@@ -283,7 +303,8 @@ void write_iges_model(const std::string& path, const Handle(Standard_Transient) 
     gs.SetCascadeUnit(u.mm);
     writer.Model()->SetGlobalSection(gs);
   }
-  if (shape ? !writer.AddShape(*shape) : !writer.AddGeom(geom))
+  const Handle(SinkIndicator) progress = new SinkIndicator("IGES translation");
+  if (shape ? !writer.AddShape(*shape, progress->Start()) : !writer.AddGeom(geom))
     throw Error(Errc::export_failed,
                 path + ": OpenCASCADE could not translate the geometry to IGES");
   writer.ComputeModel();
@@ -534,7 +555,12 @@ std::vector<FaceMesh> mesh_shell(const sweep::NurbsShell<double>& s, double defl
   std::vector<FaceMesh> out;
   guarded(path, [&] {
     const TopoDS_Shape shape = make_shell(s, path);
-    BRepMesh_IncrementalMesh mesher(shape, deflection, Standard_False, angle, Standard_True);
+    IMeshTools_Parameters params;
+    params.Deflection = deflection;
+    params.Angle = angle;
+    params.InParallel = Standard_True;
+    const Handle(SinkIndicator) progress = new SinkIndicator("meshing");
+    BRepMesh_IncrementalMesh mesher(shape, params, progress->Start());
     if (!mesher.IsDone()) throw Error(Errc::export_failed, path + ": OpenCASCADE's mesher failed");
     for (TopExp_Explorer e(shape, TopAbs_FACE); e.More(); e.Next()) {
       const TopoDS_Face& face = TopoDS::Face(e.Current());

@@ -19,6 +19,7 @@
 #include <qmotion/io/occt_info.hpp>
 #include <qmotion/io/poses.hpp>
 #include <qmotion/io/profiles.hpp>
+#include <qmotion/io/progress.hpp>
 #include <qmotion/io/qspline.hpp>
 #include <qmotion/io/toolpath.hpp>
 #include <qmotion/io/units.hpp>

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <functional>
 #include <qmotion/io/atomic_file.hpp>
+#include <qmotion/io/progress.hpp>
 #include <qmotion/io/toolpath.hpp>
 #include <qmotion/io/units.hpp>
 #include <qmotion/kernel/error.hpp>
@@ -359,6 +360,7 @@ Toolpath toolpath(const AnyMotion& motion, const ToolpathOptions& o) {
   so.chord_tol = tol - src.fit_error;
   so.angle_tol = o.angle_tol_deg * kPi / 180;
   if (o.max_step > 0) so.max_step = o.max_step / k;
+  so.progress = [](double f) { report_progress("toolpath", 0.8 * f); };
   const auto sampled = sweep::sample_toolpath(src.h, src.d, so);
   tp.samples = sampled.samples;
   tp.max_chord_bound = (sampled.max_chord_bound + src.fit_error) * k;
@@ -367,6 +369,9 @@ Toolpath toolpath(const AnyMotion& motion, const ToolpathOptions& o) {
   // against it.
   std::vector<double> arc{0.0};
   for (std::size_t i = 0; i + 1 < tp.samples.size(); ++i) {
+    if (i % 256 == 0)
+      report_progress("toolpath",
+                      0.8 + 0.2 * static_cast<double>(i) / static_cast<double>(tp.samples.size()));
     const double t0 = tp.samples[i].t, t1 = tp.samples[i + 1].t;
     arc.push_back(arc.back() + arc_length(src, t0, t1) * k);
     for (int s = 1; s < 32; ++s)
@@ -376,6 +381,7 @@ Toolpath toolpath(const AnyMotion& motion, const ToolpathOptions& o) {
                                                 tp.samples[i].point, tp.samples[i + 1].point));
   }
   tp.path_length = arc.back();
+  report_progress("toolpath", 1.0);
   tp.max_chord_measured *= k;
   for (auto& s : tp.samples) s.point *= k;
   if (!o.rotary.empty()) {

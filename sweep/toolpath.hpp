@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <qmotion/kernel/bspline.hpp>
 #include <qmotion/kernel/error.hpp>
@@ -24,6 +25,8 @@ struct SamplerOptions {
   double angle_tol = 0.5 * 3.14159265358979323846 / 180;      ///< radians, > 0
   double max_step = std::numeric_limits<double>::infinity();  ///< chord length cap
   int subdivisions = 4;  ///< parts per piece for the bound (tighter with more)
+  /// Called with the share of the interval done after every point (none: not called).
+  std::function<void(double)> progress;
 };
 
 struct SampledToolpath {
@@ -203,6 +206,7 @@ inline SampledToolpath sample_toolpath(const kernel::BSpline<Eigen::Vector4d>& h
     out.max_angle_bound = std::max(out.max_angle_bound, good_angle);
     p0 = point(t1);
     out.samples.push_back({t1, p0, axis(t1)});
+    if (opt.progress) opt.progress((t1 - a) / (b - a));
     step = lo;
     t0 = t1;
   }

@@ -1,7 +1,10 @@
 // tests/cli/cli_test.cpp: the qmotion executable against SPEC §6 (exit codes, messages,
 // JSON output, no output file on failure).
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <pty.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -673,6 +676,61 @@ TEST(Cli, ToolpathBadInputsExitTwoAndLeaveNoFile) {
   EXPECT_EQ(nurbs_csv.status, 2);
   EXPECT_NE(nurbs_csv.err.find("--nurbs"), std::string::npos) << nurbs_csv.err;
   EXPECT_FALSE(fs::exists(csv));
+}
+
+/// Runs qmotion with stderr on a pseudo-terminal (stdout to /dev/null) and the progress
+/// threshold at 0 s; returns what the terminal received.
+std::string run_on_terminal(const std::vector<std::string>& args) {
+  int master = -1, slave = -1;
+  if (openpty(&master, &slave, nullptr, nullptr, nullptr) != 0) return "(no pty)";
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const int null = ::open("/dev/null", O_WRONLY);
+    ::dup2(null, 1);
+    ::dup2(slave, 2);
+    ::close(master);
+    std::vector<char*> argv{const_cast<char*>(kExe.c_str())};
+    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    ::setenv("QMOTION_PROGRESS_AFTER", "0", 1);
+    ::execv(kExe.c_str(), argv.data());
+    ::_exit(127);
+  }
+  ::close(slave);
+  std::string out;
+  char buf[4096];
+  for (ssize_t n; (n = ::read(master, buf, sizeof buf)) > 0;)
+    out.append(buf, static_cast<std::size_t>(n));
+  ::close(master);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << out;
+  return out;
+}
+
+TEST(Cli, ProgressBarsOnlyOnATerminalAndNotWithQuiet) {
+  const std::string m = (scratch_dir() / "progress_motion.json").string();
+  ASSERT_EQ(run({"interpolate", test_data("poses/helix_40.json"), "-o", m}).status, 0);
+  const std::string out = (scratch_dir() / "progress.ngc").string();
+  const std::vector<std::string> toolpath{"toolpath",    m,       "--point", "1,0,2",
+                                          "--chord-tol", "0.001", "-o",      out};
+  const std::string tty = run_on_terminal(toolpath);
+  EXPECT_NE(tty.find("qmotion: toolpath ["), std::string::npos) << tty;
+  EXPECT_NE(tty.find("%"), std::string::npos) << tty;
+  // --quiet, before or after the command: no bar.
+  std::vector<std::string> quiet{"--quiet"};
+  quiet.insert(quiet.end(), toolpath.begin(), toolpath.end());
+  EXPECT_EQ(run_on_terminal(quiet).find("qmotion: toolpath ["), std::string::npos);
+  std::vector<std::string> quiet_after = toolpath;
+  quiet_after.push_back("--quiet");
+  EXPECT_EQ(run_on_terminal(quiet_after).find("qmotion: toolpath ["), std::string::npos);
+  // STEP translation and meshing report too.
+  const std::string step = run_on_terminal(
+      {"sweep", m, "--profile", "circle:3", "-o", (scratch_dir() / "progress.step").string()});
+  EXPECT_NE(step.find("qmotion: STEP translation ["), std::string::npos) << step;
+  // Not a terminal: silent.
+  const Result piped = run(toolpath);
+  EXPECT_EQ(piped.err.find('\r'), std::string::npos) << piped.err;
 }
 
 TEST(Cli, ToolpathNurbsReportsItsCertifiedDeviation) {
