@@ -395,18 +395,8 @@ void write_surfaces(const std::vector<sweep::NurbsSurface<double>>& surfaces, Fo
       write_iges(opt.output, shell, info);
       break;
     case Format::mesh: {
-      double size = 0;
-      for (const auto& f : shell.faces) {
-        Eigen::Vector3d lo = f.points.front().front(), hi = lo;
-        for (const auto& row : f.points)
-          for (const auto& p : row) {
-            lo = lo.cwiseMin(p);
-            hi = hi.cwiseMax(p);
-          }
-        size = std::max(size, (hi - lo).norm());
-      }
       MeshOptions mo;
-      mo.deflection = opt.deflection > 0 ? opt.deflection : 1e-3 * size;
+      mo.deflection = opt.deflection > 0 ? opt.deflection : 1e-3 * sweep::diagonal(shell);
       mo.angle_deg = opt.angle_deg;
       mo.ascii = opt.ascii;
       Mesh mesh = mesh_shell_within(shell, mo, opt.output);

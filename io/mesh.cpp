@@ -23,17 +23,6 @@ std::string extension(const std::string& path) {
   return e;
 }
 
-double shell_diagonal(const sweep::NurbsShell<double>& s) {
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(HUGE_VAL), hi = -lo;
-  for (const auto& f : s.faces)
-    for (const auto& row : f.points)
-      for (const auto& p : row) {
-        lo = lo.cwiseMin(p);
-        hi = hi.cwiseMax(p);
-      }
-  return (hi - lo).norm();
-}
-
 /// Welds nodes closer than tol (a hash grid of cell tol, the 27 cells around a node).
 class Welder {
  public:
@@ -123,7 +112,6 @@ Mesh assemble(const sweep::NurbsShell<double>& shell, const std::vector<FaceMesh
     if (n + reverse != 2) m.closed = false;
     if (n != 1 || reverse != 1) m.oriented = false;
   }
-  m.oriented = m.oriented && m.closed;
   return m;
 }
 
@@ -161,7 +149,7 @@ Mesh mesh_shell_within(const sweep::NurbsShell<double>& shell, const MeshOptions
     throw Error(Errc::invalid_input, "--deflection: expected a positive length");
   if (!(o.angle_deg > 0) || !(o.angle_deg <= 90))
     throw Error(Errc::invalid_input, "--angle: expected degrees in (0, 90]");
-  const double size = shell_diagonal(shell);
+  const double size = sweep::diagonal(shell);
   double d = o.deflection;
   for (int round = 1; round <= 8; ++round) {
     Mesh m = assemble(shell, mesh_shell(shell, d, o.angle_deg * kPi / 180, path), size);

@@ -422,17 +422,6 @@ TopoDS_Wire make_wire(const std::vector<sweep::NurbsCurve<double>>& curves, cons
   return w.Wire();
 }
 
-double shell_size(const sweep::NurbsShell<double>& s) {
-  Eigen::Vector3d lo = s.faces.front().points.front().front(), hi = lo;
-  for (const auto& f : s.faces)
-    for (const auto& row : f.points)
-      for (const auto& p : row) {
-        lo = lo.cwiseMin(p);
-        hi = hi.cwiseMax(p);
-      }
-  return (hi - lo).norm();
-}
-
 /// The faces sewn into one shell, or with caps into one closed, outward-oriented solid.
 TopoDS_Shape make_shell(const sweep::NurbsShell<double>& s, const std::string& path) {
   if (s.faces.empty()) throw Error(Errc::internal, "a shell without faces");
@@ -441,7 +430,7 @@ TopoDS_Shape make_shell(const sweep::NurbsShell<double>& s, const std::string& p
   }
   // Neighbouring faces share their boundary poles exactly; the tolerance only absorbs
   // OpenCASCADE's own rounding of the boundary curves.
-  BRepBuilderAPI_Sewing sewing(std::max(1e-7, 1e-9 * shell_size(s)));
+  BRepBuilderAPI_Sewing sewing(std::max(1e-7, 1e-9 * sweep::diagonal(s)));
   for (const auto& f : s.faces) sewing.Add(BRepBuilderAPI_MakeFace(make_surface(f), 1e-9).Face());
   if (!s.cap_start.empty()) {
     for (const auto* cap : {&s.cap_start, &s.cap_end}) {

@@ -18,6 +18,19 @@ struct NurbsShell {
   bool closed = false;
 };
 
+/// The diagonal of the box around every face's poles: the size of the shell.
+template <typename Scalar>
+Scalar diagonal(const NurbsShell<Scalar>& s) {
+  Eigen::Matrix<Scalar, 3, 1> lo = s.faces.front().points.front().front(), hi = lo;
+  for (const auto& f : s.faces)
+    for (const auto& row : f.points)
+      for (const auto& p : row) {
+        lo = lo.cwiseMin(p);
+        hi = hi.cwiseMax(p);
+      }
+  return (hi - lo).norm();
+}
+
 /// Index ranges of the C1 pieces of a clamped knot vector of degree p: the interior knots
 /// of multiplicity >= p (continuity C0 or a break) split it. Each piece is (first pole, pole
 /// count, its clamped knot vector); the poles are shared, unchanged, with the whole (a knot
