@@ -1,8 +1,10 @@
 // io/json_number.cpp
+#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <qmotion/io/json_number.hpp>
+#include <qmotion/io/json_simd.hpp>
 #include <qmotion/kernel/error.hpp>
 #include <sstream>
 #include <vector>
@@ -97,16 +99,35 @@ std::string line_column(const std::string& text, std::size_t pos) {
   return "line " + std::to_string(line) + ", column " + std::to_string(col);
 }
 
-}  // namespace
-
-Number Number::from_double(double v) {
-  std::ostringstream os;
-  os.precision(17);
-  os << v;
-  return Number{os.str(), v};
+/// The fast path: simdjson's on-demand parser for documents that are an object or an array
+/// (every file qmotion reads). False when simdjson refuses anything, so that the caller
+/// falls back to nlohmann for the verdict and the message.
+bool parse_json_simd(const std::string& text, std::string_view plain_member, json& root) {
+  std::size_t first = 0;
+  while (first < text.size() &&
+         (text[first] == ' ' || text[first] == '\t' || text[first] == '\n' || text[first] == '\r'))
+    ++first;
+  if (first == text.size() || (text[first] != '{' && text[first] != '[')) return false;
+  simd::Document d(text);
+  if (!d.ok) return false;
+  if (text[first] == '[' || plain_member.empty()) {
+    simd::sj::value v;
+    if (d.doc.get_value().get(v) || !simd::build(v, root, false)) return false;
+  } else {
+    simd::sj::object obj;
+    if (d.doc.get_object().get(obj)) return false;
+    root = json::object();
+    for (auto field : obj) {
+      std::string_view key;
+      if (field.unescaped_key().get(key)) return false;
+      if (!simd::build(field.value(), root[std::string(key)], key == plain_member)) return false;
+    }
+  }
+  return d.at_end();
 }
 
-json parse_json(const std::string& text, const std::string& source) {
+/// The nlohmann parser: the reference for what is accepted and for the messages.
+json parse_json_checked(const std::string& text, const std::string& source) {
   json root;
   TextPreservingSax sax(root);
   const bool ok = json::sax_parse(text, &sax, json::input_format_t::json, /*strict=*/true);
@@ -129,6 +150,34 @@ json parse_json(const std::string& text, const std::string& source) {
   return root;
 }
 
+}  // namespace
+
+Number Number::from_double(double v) {
+  // The shortest text that reads back as v (often the very text of the file it came from).
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return Number{std::string(buf, r.ptr), v};
+}
+
+json parse_json(const std::string& text, const std::string& source) {
+  return parse_json(text, source, {});
+}
+
+json parse_json_reference(const std::string& text, const std::string& source) {
+  return parse_json_checked(text, source);
+}
+
+json parse_json(const std::string& text, const std::string& source, std::string_view plain_member) {
+  json root;
+  if (parse_json_simd(text, plain_member, root)) return root;
+  root = parse_json_checked(text, source);
+  if (!plain_member.empty() && root.is_object()) {
+    const auto it = root.find(plain_member);
+    if (it != root.end()) *it = json::parse(text)[std::string(plain_member)];
+  }
+  return root;
+}
+
 std::string read_text_file(const std::string& path, std::uintmax_t max_bytes) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(Errc::invalid_input, path + ": cannot open file for reading");
@@ -138,7 +187,10 @@ std::string read_text_file(const std::string& path, std::uintmax_t max_bytes) {
     throw Error(Errc::invalid_input, path + ": a file of " + std::to_string(size) +
                                          " bytes (at most " + std::to_string(max_bytes) + ")");
   // Read in chunks up to the limit: a device or pipe (/dev/zero, a FIFO) has no size.
+  // The spare capacity lets the JSON reader parse the text in place (simdjson reads up to
+  // 64 bytes past the end).
   std::string text;
+  if (!ec && size <= max_bytes) text.reserve(static_cast<std::size_t>(size) + kReadPadding);
   char chunk[1 << 16];
   while (in.read(chunk, sizeof chunk) || in.gcount() > 0) {
     text.append(chunk, static_cast<std::size_t>(in.gcount()));
@@ -152,7 +204,44 @@ std::string read_text_file(const std::string& path, std::uintmax_t max_bytes) {
 
 json read_json_file(const std::string& path) { return parse_json(read_text_file(path), path); }
 
+namespace {
+
+/// The common case of every number read, without allocation or message: a decimal literal
+/// [+-]? (digits [. digits*] | . digits) ([eE] [+-]? digits)? with nothing around it, and its
+/// nearest double (std::from_chars rounds correctly). False for anything else, which
+/// parse_number_text then reads or refuses with a message.
+bool fast_decimal(std::string_view t, double& v) {
+  if (t.empty() || t.size() > kMaxNumberChars) return false;
+  const char* p = t.data();
+  const char* const e = p + t.size();
+  const bool plus = *p == '+';
+  if (*p == '+' || *p == '-') ++p;
+  const char* const mantissa = plus ? p : t.data();
+  const auto digits = [e](const char*& q) {
+    const char* s = q;
+    while (q < e && *q >= '0' && *q <= '9') ++q;
+    return q > s;
+  };
+  bool ok = digits(p);
+  if (p < e && *p == '.') {
+    ++p;
+    ok = digits(p) || ok;
+  }
+  if (!ok) return false;
+  if (p < e && (*p == 'e' || *p == 'E')) {
+    ++p;
+    if (p < e && (*p == '+' || *p == '-')) ++p;
+    if (!digits(p)) return false;
+  }
+  if (p != e) return false;
+  const auto r = std::from_chars(mantissa, e, v);
+  return r.ec == std::errc() && r.ptr == e && std::isfinite(v);
+}
+
+}  // namespace
+
 Number parse_number_text(const std::string& raw, const std::string& where) {
+  if (double v = 0; fast_decimal(raw, v)) return Number{raw, v};
   if (raw.size() > kMaxNumberChars)
     throw Error(Errc::invalid_input, where + ": a number of " + std::to_string(raw.size()) +
                                          " characters (at most " + std::to_string(kMaxNumberChars) +
@@ -250,6 +339,170 @@ Number read_number(const json& j, const std::string& where) {
   if (j.is_string()) return parse_number_text(j.get<std::string>(), where);
   throw Error(Errc::invalid_input,
               where + ": expected a number, found " + std::string(j.type_name()));
+}
+
+namespace simd {
+
+Document::Document(const std::string& text) {
+  thread_local sj::parser parser;
+  // read_text_file leaves the padding simdjson reads past the end; other text is copied.
+  if (text.capacity() - text.size() >= simdjson::SIMDJSON_PADDING) {
+    ok = !parser.iterate(text).get(doc);
+  } else {
+    padded = simdjson::padded_string(text);
+    ok = !parser.iterate(padded).get(doc);
+  }
+}
+
+bool Document::at_end() {
+  // Past the root value, the location is an out-of-bounds error.
+  const char* rest = nullptr;
+  return doc.current_location().get(rest) == simdjson::OUT_OF_BOUNDS;
+}
+
+namespace {
+
+/// The trailing white space the raw token of a number carries.
+std::string_view trimmed(std::string_view raw) {
+  while (!raw.empty() &&
+         (raw.back() == ' ' || raw.back() == '\t' || raw.back() == '\n' || raw.back() == '\r'))
+    raw.remove_suffix(1);
+  return raw;
+}
+
+/// Reads v whole (simdjson validates what is read, not what is skipped) into *out, or
+/// only validates it when out is null.
+bool walk(sj::value v, json* out, bool plain) {
+  sj::json_type type;
+  if (v.type().get(type)) return false;
+  switch (type) {
+    case sj::json_type::array: {
+      sj::array arr;
+      if (v.get_array().get(arr)) return false;
+      if (out) *out = json::array();
+      for (auto child : arr) {
+        sj::value cv;
+        if (child.get(cv)) return false;
+        if (out) out->push_back(nullptr);
+        if (!walk(cv, out ? &out->back() : nullptr, plain)) return false;
+      }
+      return true;
+    }
+    case sj::json_type::object: {
+      sj::object obj;
+      if (v.get_object().get(obj)) return false;
+      if (out) *out = json::object();
+      for (auto field : obj) {
+        std::string_view key;
+        if (field.unescaped_key().get(key)) return false;
+        if (!walk(field.value(), out ? &(*out)[std::string(key)] : nullptr, plain)) return false;
+      }
+      return true;
+    }
+    case sj::json_type::number: {
+      // get_number validates the literal (the raw token alone is not checked) and tells
+      // integers from floats; floats keep their text, as in TextPreservingSax.
+      sj::number n;
+      if (v.get_number().get(n)) return false;
+      if (!out) return true;
+      switch (n.get_number_type()) {
+        case sj::number_type::signed_integer:
+          *out = n.get_int64();
+          return true;
+        case sj::number_type::unsigned_integer:
+          *out = n.get_uint64();
+          return true;
+        default:
+          if (plain) {
+            *out = n.get_double();
+          } else {
+            *out = std::string(trimmed(v.raw_json_token()));
+          }
+          return true;
+      }
+    }
+    case sj::json_type::string: {
+      std::string_view s;
+      if (v.get_string().get(s)) return false;
+      if (out) *out = std::string(s);
+      return true;
+    }
+    case sj::json_type::boolean: {
+      bool b = false;
+      if (v.get_bool().get(b)) return false;
+      if (out) *out = b;
+      return true;
+    }
+    case sj::json_type::null: {
+      bool null = false;
+      if (v.is_null().get(null) || !null) return false;
+      if (out) *out = nullptr;
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+bool build(sj::value v, json& out, bool plain) { return walk(v, &out, plain); }
+
+bool check(sj::value v) { return walk(v, nullptr, false); }
+
+bool number(sj::value v, Number& out) {
+  sj::json_type type;
+  if (v.type().get(type)) return false;
+  if (type == sj::json_type::string) {
+    std::string_view s;
+    if (v.get_string().get(s)) return false;
+    auto n = try_number_text(s);
+    if (!n) return false;
+    out = std::move(*n);
+    return true;
+  }
+  if (type != sj::json_type::number) return false;
+  sj::number n;
+  if (v.get_number().get(n)) return false;
+  switch (n.get_number_type()) {
+    case sj::number_type::signed_integer:
+      out = Number{std::to_string(n.get_int64()), static_cast<double>(n.get_int64())};
+      return true;
+    case sj::number_type::unsigned_integer:
+      out = Number{std::to_string(n.get_uint64()), static_cast<double>(n.get_uint64())};
+      return true;
+    default: {
+      out = Number{std::string(trimmed(v.raw_json_token())), n.get_double()};
+      return true;
+    }
+  }
+}
+
+}  // namespace simd
+
+std::optional<Number> try_number_text(std::string_view t) {
+  if (double v = 0; fast_decimal(t, v)) return Number{std::string(t), v};
+  return std::nullopt;
+}
+
+std::optional<Number> try_read_number(const json& j) {
+  if (j.is_string()) {
+    return try_number_text(j.get_ref<const std::string&>());
+  } else if (j.is_number_integer()) {
+    return read_number(j, std::string());  // cannot fail
+  }
+  return std::nullopt;
+}
+
+Number read_number(const json& j, const std::string& where, std::size_t index) {
+  return read_number_lazy(j, [&] { return where + "[" + std::to_string(index) + "]"; });
+}
+
+std::vector<Number> read_numbers(const json& j, const std::string& where) {
+  if (!j.is_array()) throw Error(Errc::invalid_input, where + ": expected an array of numbers");
+  std::vector<Number> v;
+  v.reserve(j.size());
+  for (std::size_t i = 0; i < j.size(); ++i) v.push_back(read_number(j[i], where, i));
+  return v;
 }
 
 const json& require(const json& j, const std::string& key, const std::string& where) {

@@ -2,7 +2,10 @@
 #pragma once
 #include <cstdint>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
+#include <string_view>
+#include <vector>
 
 namespace qmotion::io {
 
@@ -23,6 +26,14 @@ struct Number {
 /// text (read them with read_number); integers stay integers. Throws
 /// Errc::invalid_input naming `source`, the line and the column on a syntax error.
 nlohmann::json parse_json(const std::string& text, const std::string& source);
+/// The reader parse_json falls back to, nlohmann's: the reference for what is accepted
+/// and the one that words every message (line, column, NaN). Same document as parse_json.
+nlohmann::json parse_json_reference(const std::string& text, const std::string& source);
+
+/// The same, except that the root object's member `plain_member` (metadata echoed back to
+/// users, such as a motion's "method") keeps float literals as JSON numbers (doubles).
+nlohmann::json parse_json(const std::string& text, const std::string& source,
+                          std::string_view plain_member);
 
 /// Reads a whole file and parses it with parse_json. Throws Errc::invalid_input when the
 /// file cannot be read.
@@ -30,6 +41,9 @@ nlohmann::json read_json_file(const std::string& path);
 
 /// Largest file read (bounded memory: a 10^5-pose motion file is about 130 MB).
 inline constexpr std::uintmax_t kMaxFileBytes = std::uintmax_t(512) << 20;
+
+/// Spare capacity read_text_file leaves after the text, so that JSON is parsed in place.
+inline constexpr std::size_t kReadPadding = 64;
 
 /// The whole file; Errc::invalid_input naming the path when it cannot be read or is larger
 /// than max_bytes.
@@ -43,6 +57,28 @@ Number parse_number_text(const std::string& text, const std::string& where);
 /// The finite number at j (a JSON number or a numeric string); `where` names the file and
 /// field in the message of the Errc::invalid_input it throws otherwise.
 Number read_number(const nlohmann::json& j, const std::string& where);
+
+/// The number written as `text` when it is a plain decimal literal (the common case),
+/// without building any message; std::nullopt otherwise.
+std::optional<Number> try_number_text(std::string_view text);
+
+/// The number at j when it is an integer or a plain decimal literal (the common case),
+/// without building any message; std::nullopt otherwise (read_number then decides).
+std::optional<Number> try_read_number(const nlohmann::json& j);
+
+/// read_number, with the message's `where()` only called when the fast path declines (this
+/// runs for every number of every file, and most of them are fine).
+template <typename WhereFn>
+Number read_number_lazy(const nlohmann::json& j, WhereFn&& where) {
+  if (auto n = try_read_number(j)) return std::move(*n);
+  return read_number(j, where());
+}
+
+/// The same for element `index` of an array named `where`: the message names where[index],
+/// and that text is only built when the number is refused (this runs for every number).
+Number read_number(const nlohmann::json& j, const std::string& where, std::size_t index);
+/// The array of numbers j; Errc::invalid_input naming where[i] for a bad element.
+std::vector<Number> read_numbers(const nlohmann::json& j, const std::string& where);
 
 /// Member `key` of object j, or throws naming `where` and the key.
 const nlohmann::json& require(const nlohmann::json& j, const std::string& key,

@@ -1,5 +1,6 @@
 // io/motion_json.cpp
 #include <qmotion/io/atomic_file.hpp>
+#include <qmotion/io/json_simd.hpp>
 #include <qmotion/io/motion_json.hpp>
 #include <qmotion/io/poses.hpp>
 #include <qmotion/kernel/error.hpp>
@@ -12,14 +13,6 @@
 namespace qmotion::io {
 namespace {
 using json = nlohmann::json;
-
-std::vector<Number> read_numbers(const json& j, const std::string& where) {
-  if (!j.is_array()) throw Error(Errc::invalid_input, where + ": expected an array of numbers");
-  std::vector<Number> v;
-  for (std::size_t i = 0; i < j.size(); ++i)
-    v.push_back(read_number(j[i], where + "[" + std::to_string(i) + "]"));
-  return v;
-}
 
 template <typename Scalar, typename Conv>
 kernel::QMotion<Scalar> build_motion(const MotionFile& f, Conv conv) {
@@ -265,7 +258,142 @@ std::optional<sweep::MotionFactors<kernel::Rational>> factors_exact(
 }
 #endif
 
+/// The checks that need the whole file, once its fields are read (by either reader):
+/// default Bezier knots, control point count, the knot vector, the parameter range's
+/// agreement with it, a non-zero rotational part.
+void finish_motion(MotionFile& f, bool knots_given) {
+  const std::string& source = f.source;
+  const std::size_t n = f.ctrl.size();
+  const auto& range = f.range;
+  if (!knots_given && f.basis == kernel::Basis::bspline)
+    throw Error(Errc::invalid_input,
+                source + ": missing field 'knots' (required for a bspline motion)");
+  if (!knots_given) {
+    f.knots.assign(static_cast<std::size_t>(f.degree + 1), f.range[0]);
+    f.knots.insert(f.knots.end(), static_cast<std::size_t>(f.degree + 1), f.range[1]);
+  }
+  if (f.basis == kernel::Basis::bezier && n != static_cast<std::size_t>(f.degree + 1))
+    throw Error(Errc::invalid_input,
+                source + ": a Bezier motion of degree " + std::to_string(f.degree) + " needs " +
+                    std::to_string(f.degree + 1) + " control points, found " + std::to_string(n));
+  std::vector<double> kv;
+  for (const auto& k : f.knots) kv.push_back(k.value);
+  const auto issues = kernel::BSpline<double>::validate(f.degree, kv, n);
+  if (!issues.empty()) throw Error(Errc::invalid_input, source + ": knots: " + issues.front());
+  if (f.basis == kernel::Basis::bezier && (kv.size() != 2 * n || kv[n - 1] != kv.front()))
+    throw Error(Errc::invalid_input, source + ": knots: a Bezier motion has no interior knots");
+  for (std::size_t i = f.degree + 1; i + f.degree + 1 < kv.size(); ++i)
+    if (kv[i] == kv[i + f.degree])
+      throw Error(Errc::invalid_input,
+                  source + ": knots: knot " + f.knots[i].text +
+                      " has multiplicity above the degree (the motion would be discontinuous)");
+  if (kv.front() != range[0].value || kv.back() != range[1].value)
+    throw Error(Errc::invalid_input, source + ": param_range [" + range[0].text + ", " +
+                                         range[1].text + "] differs from the knot vector's ends");
+  bool real_nonzero = false;
+  for (const auto& c : f.ctrl)
+    for (std::size_t k = 0; k < 4; ++k) real_nonzero = real_nonzero || c[k].value != 0.0;
+  if (!real_nonzero)
+    throw Error(Errc::invalid_input,
+                source + ": control_points: the rotational (real) part is zero everywhere");
+}
+
+/// The motion file read straight from the text by simdjson, without a DOM for the
+/// control points and knots (a 10^4-pose motion is 10^5 numbers). std::nullopt as soon as
+/// anything is unusual (a field of the wrong kind, an exact "p/q" number, invalid JSON):
+/// parse_motion then reads the file and words the message. Throws only finish_motion's
+/// errors, which both readers share.
+std::optional<MotionFile> parse_motion_fast(const std::string& text, const std::string& source,
+                                            bool with_method) {
+  namespace sj = simd::sj;
+  simd::Document d(text);
+  sj::object root;
+  if (!d.ok || d.doc.get_object().get(root)) return std::nullopt;
+  MotionFile f;
+  f.source = source;
+  bool type = false, basis = false, degree = false, range = false, ctrl = false,
+       knots_given = false;
+  const auto numbers = [](sj::value v, std::vector<Number>& out) {
+    sj::array a;
+    if (v.get_array().get(a)) return false;
+    out.clear();
+    for (auto e : a) {
+      sj::value ev;
+      if (e.get(ev) || !simd::number(ev, out.emplace_back())) return false;
+    }
+    return true;
+  };
+  for (auto field : root) {
+    std::string_view key;
+    if (field.unescaped_key().get(key)) return std::nullopt;
+    sj::value v = field.value();
+    if (key == "type") {
+      std::string_view t;
+      if (v.get_string().get(t) || t != "q-motion") return std::nullopt;
+      type = true;
+    } else if (key == "basis") {
+      std::string_view b;
+      if (v.get_string().get(b) || (b != "bezier" && b != "bspline")) return std::nullopt;
+      f.basis = b == "bezier" ? kernel::Basis::bezier : kernel::Basis::bspline;
+      basis = true;
+    } else if (key == "degree") {
+      std::int64_t g = 0;
+      sj::json_type t;
+      if (v.type().get(t) || t != sj::json_type::number || v.get_int64().get(g) || g < 0 || g > 200)
+        return std::nullopt;
+      f.degree = static_cast<int>(g);
+      degree = true;
+    } else if (key == "param_range") {
+      std::vector<Number> r;
+      if (!numbers(v, r) || r.size() != 2 || !(r[0].value < r[1].value)) return std::nullopt;
+      f.range = {r[0], r[1]};
+      range = true;
+    } else if (key == "units") {
+      std::string_view u;
+      if (v.get_string().get(u) || !is_known_unit(std::string(u))) return std::nullopt;
+      f.units = std::string(u);
+    } else if (key == "control_points") {
+      sj::array rows;
+      if (v.get_array().get(rows)) return std::nullopt;
+      f.ctrl.clear();
+      for (auto r : rows) {
+        sj::array row;
+        if (r.get_array().get(row) || f.ctrl.size() >= kMaxMotionControlPoints) return std::nullopt;
+        auto& c = f.ctrl.emplace_back();
+        std::size_t k = 0;
+        for (auto e : row) {
+          sj::value ev;
+          if (k == 8 || e.get(ev) || !simd::number(ev, c[k++])) return std::nullopt;
+        }
+        if (k != 8) return std::nullopt;
+      }
+      ctrl = true;
+    } else if (key == "knots") {
+      bool null = false;
+      if (v.is_null().get(null)) return std::nullopt;
+      knots_given = !null;
+      if (!null && !numbers(v, f.knots)) return std::nullopt;
+    } else if (key == "method") {
+      sj::json_type t;
+      if (v.type().get(t) || (t != sj::json_type::object && t != sj::json_type::null))
+        return std::nullopt;
+      if (!(with_method ? simd::build(v, f.method, /*plain=*/true) : simd::check(v)))
+        return std::nullopt;
+    } else {
+      nlohmann::json ignored;  // not read, but it must be valid JSON
+      if (!simd::build(v, ignored, false)) return std::nullopt;
+    }
+  }
+  if (!type || !basis || !degree || !range || !ctrl || !d.at_end()) return std::nullopt;
+  finish_motion(f, knots_given);
+  return f;
+}
+
 MotionFile parse_motion(const json& doc, const std::string& source) {
+  return parse_motion(json(doc), source);
+}
+
+MotionFile parse_motion(json&& doc, const std::string& source) {
   MotionFile f;
   f.source = source;
   if (!doc.is_object())
@@ -313,57 +441,30 @@ MotionFile parse_motion(const json& doc, const std::string& source) {
     throw Error(Errc::invalid_input, source + ": control_points: more than " +
                                          std::to_string(kMaxMotionControlPoints) +
                                          " (the limit keeps memory bounded)");
-  bool real_nonzero = false;
+  f.ctrl.resize(ctrl.size());
   for (std::size_t i = 0; i < ctrl.size(); ++i) {
-    const std::string w = source + ": control_points[" + std::to_string(i) + "]";
-    const auto v = read_numbers(ctrl[i], w);
-    if (v.size() != 8)
+    // Messages are built only when a row is refused: this loop reads every number.
+    const auto w = [&] { return source + ": control_points[" + std::to_string(i) + "]"; };
+    const json& row = ctrl[i];
+    if (!row.is_array()) throw Error(Errc::invalid_input, w() + ": expected an array of numbers");
+    if (row.size() != 8)
       throw Error(Errc::invalid_input,
-                  w + ": expected 8 numbers (w,x,y,z, eps w,eps x,eps y,eps z), found " +
-                      std::to_string(v.size()));
-    std::array<Number, 8> c;
-    std::copy(v.begin(), v.end(), c.begin());
-    for (std::size_t k = 0; k < 4; ++k) real_nonzero = real_nonzero || c[k].value != 0.0;
-    f.ctrl.push_back(c);
+                  w() + ": expected 8 numbers (w,x,y,z, eps w,eps x,eps y,eps z), found " +
+                      std::to_string(row.size()));
+    std::array<Number, 8>& c = f.ctrl[i];
+    for (std::size_t k = 0; k < 8; ++k)
+      c[k] = read_number_lazy(row[k], [&] { return w() + "[" + std::to_string(k) + "]"; });
   }
-  const std::size_t n = ctrl.size();
-  if (doc.contains("knots") && !doc["knots"].is_null()) {
-    f.knots = read_numbers(doc["knots"], source + ": knots");
-  } else if (f.basis == kernel::Basis::bezier) {
-    f.knots.assign(static_cast<std::size_t>(f.degree + 1), f.range[0]);
-    f.knots.insert(f.knots.end(), static_cast<std::size_t>(f.degree + 1), f.range[1]);
-  } else {
-    throw Error(Errc::invalid_input,
-                source + ": missing field 'knots' (required for a bspline motion)");
-  }
-  if (f.basis == kernel::Basis::bezier && n != static_cast<std::size_t>(f.degree + 1))
-    throw Error(Errc::invalid_input,
-                source + ": a Bezier motion of degree " + std::to_string(f.degree) + " needs " +
-                    std::to_string(f.degree + 1) + " control points, found " + std::to_string(n));
-  std::vector<double> kv;
-  for (const auto& k : f.knots) kv.push_back(k.value);
-  const auto issues = kernel::BSpline<double>::validate(f.degree, kv, n);
-  if (!issues.empty()) throw Error(Errc::invalid_input, source + ": knots: " + issues.front());
-  if (f.basis == kernel::Basis::bezier && (kv.size() != 2 * n || kv[n - 1] != kv.front()))
-    throw Error(Errc::invalid_input, source + ": knots: a Bezier motion has no interior knots");
-  for (std::size_t i = f.degree + 1; i + f.degree + 1 < kv.size(); ++i)
-    if (kv[i] == kv[i + f.degree])
-      throw Error(Errc::invalid_input,
-                  source + ": knots: knot " + f.knots[i].text +
-                      " has multiplicity above the degree (the motion would be discontinuous)");
-  if (kv.front() != range[0].value || kv.back() != range[1].value)
-    throw Error(Errc::invalid_input, source + ": param_range [" + range[0].text + ", " +
-                                         range[1].text + "] differs from the knot vector's ends");
-  if (!real_nonzero)
-    throw Error(Errc::invalid_input,
-                source + ": control_points: the rotational (real) part is zero everywhere");
+  const bool knots_given = doc.contains("knots") && !doc["knots"].is_null();
+  if (knots_given) f.knots = read_numbers(doc["knots"], source + ": knots");
+  finish_motion(f, knots_given);
   if (doc.contains("method")) {
     if (!doc["method"].is_object() && !doc["method"].is_null())
       throw Error(Errc::invalid_input, source +
                                            ": method: expected an object (how the motion "
                                            "was made), found " +
                                            std::string(doc["method"].type_name()));
-    f.method = doc["method"];
+    f.method = std::move(doc["method"]);
   }
   return f;
 }
@@ -373,12 +474,10 @@ MotionFile read_motion(const std::string& path) {
 }
 
 MotionFile parse_motion_text(const std::string& text, const std::string& path) {
-  MotionFile f = parse_motion(parse_json(text, path), path);
-  // The method block is metadata echoed back to users: keep its numbers as numbers (the
+  if (auto f = parse_motion_fast(text, path)) return std::move(*f);
+  // The method block is metadata echoed back to users: its numbers stay numbers (the
   // text-preserving parse turns float literals into strings).
-  const json plain = json::parse(text, nullptr, /*allow_exceptions=*/false);
-  if (plain.is_object() && plain.contains("method")) f.method = plain["method"];
-  return f;
+  return parse_motion(parse_json(text, path, "method"), path);
 }
 
 kernel::QMotion<double> to_motion_double(const MotionFile& f) {

@@ -35,10 +35,19 @@ struct MotionFile {
 /// Validates a parsed motion document; throws Errc::invalid_input naming `source` and the
 /// field.
 MotionFile parse_motion(const nlohmann::json& doc, const std::string& source);
+/// The same, taking the method block out of `doc` instead of copying it.
+MotionFile parse_motion(nlohmann::json&& doc, const std::string& source);
 /// Reads and validates a motion file.
 MotionFile read_motion(const std::string& path);
 /// The same for a motion file's text already read (`source` names it in messages).
 MotionFile parse_motion_text(const std::string& text, const std::string& source);
+/// The fast path of parse_motion_text: the file read without a DOM when it is an ordinary
+/// q-motion file; std::nullopt when anything needs the full reader (another type, exact
+/// "p/q" numbers, an error to word). Throws the errors both readers share (knots, counts).
+/// `with_method` false leaves MotionFile::method null (still validated as JSON): for readers
+/// of the curve alone, such as eval.
+std::optional<MotionFile> parse_motion_fast(const std::string& text, const std::string& source,
+                                            bool with_method = true);
 
 /// The motion in double precision.
 kernel::QMotion<double> to_motion_double(const MotionFile& f);

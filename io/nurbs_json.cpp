@@ -12,8 +12,7 @@ json point_json(const Eigen::Vector3d& p) { return json{p(0), p(1), p(2)}; }
 std::vector<double> read_array(const json& j, const std::string& where) {
   if (!j.is_array()) throw Error(Errc::invalid_input, where + ": expected an array of numbers");
   std::vector<double> v;
-  for (std::size_t i = 0; i < j.size(); ++i)
-    v.push_back(read_number(j[i], where + "[" + std::to_string(i) + "]").value);
+  for (std::size_t i = 0; i < j.size(); ++i) v.push_back(read_number(j[i], where, i).value);
   return v;
 }
 

@@ -43,7 +43,9 @@ std::vector<Number> read_numbers(const json& j, std::size_t count, const Where& 
     throw Error(Errc::invalid_input, where.str() + ": expected " + std::to_string(count) +
                                          " numbers, found " + std::to_string(j.size()));
   std::vector<Number> out;
-  for (std::size_t k = 0; k < count; ++k) out.push_back(read_number(j[k], where.at(k).str()));
+  out.reserve(count);
+  for (std::size_t k = 0; k < count; ++k)
+    out.push_back(read_number_lazy(j[k], [&] { return where.at(k).str(); }));
   return out;
 }
 
@@ -177,7 +179,7 @@ PoseSet parse_poses_json_value(const json& doc, const std::string& source) {
     if (!p.is_object()) throw Error(Errc::invalid_input, where + ": expected an object");
     PoseInput in;
     if (p.contains("t") && !p["t"].is_null())
-      in.t = read_number(p["t"], pose_where(source, i, "t"));
+      in.t = read_number_lazy(p["t"], [&] { return pose_where(source, i, "t"); });
     const auto pos = read_numbers(require(p, "position", where), 3, Where{source, i, "position"});
     std::copy(pos.begin(), pos.end(), in.position.begin());
     in.rotation = read_rotation(require(p, "rotation", where), Where{source, i, "rotation"});

@@ -84,7 +84,9 @@ std::vector<double> numbers(const json& doc, const char* field, const std::strin
     throw Error(Errc::invalid_input, source + ": " + field + ": expected an array");
   std::vector<double> out;
   for (std::size_t i = 0; i < a.size(); ++i)
-    out.push_back(read_number(a[i], source + ": " + field + "[" + std::to_string(i) + "]").value);
+    out.push_back(read_number_lazy(a[i], [&] {
+                    return source + ": " + field + "[" + std::to_string(i) + "]";
+                  }).value);
   return out;
 }
 
@@ -252,13 +254,14 @@ QSplineMotion qspline_motion(const json& doc, const std::string& source) {
 
 AnyMotion load_any_motion(const std::string& path) {
   const std::string text = read_text_file(path);
-  const json doc = parse_json(text, path);
+  if (auto f = parse_motion_fast(text, path)) return to_motion(*f);
+  json doc = parse_json(text, path, "method");  // one parse for either kind
   if (is_qspline_document(doc)) {
     QSplineMotion m = qspline_motion(doc, path);
     m.document = json::parse(text, nullptr, false);  // as written: numbers as numbers
     return m;
   }
-  return to_motion(parse_motion_text(text, path));
+  return to_motion(parse_motion(std::move(doc), path));
 }
 
 const std::string& units_of(const AnyMotion& m) {

@@ -109,15 +109,18 @@ std::pair<double, double> coefficient_scales(const QMotion<Scalar>& m) {
 }
 
 /// Plucker residual of the whole motion, normwise: max |Plucker coefficient| of the
-/// degree-2n spline Du(Q Q~)/2 divided by (largest real coefficient) x (largest dual
+/// degree-2n spline Du(Q Q~)/2 (its Bernstein coefficients on each span, O(n) from the
+/// motion's pieces) divided by (largest real coefficient) x (largest dual
 /// coefficient), or by the largest real coefficient squared for a pure rotation. Scale
 /// free in both parts (positions in mm make the dual part large) and the natural measure
 /// of floating-point error; exactly zero for an exact Q-motion in exact arithmetic.
 template <typename Scalar>
 Scalar plucker_residual(const QMotion<Scalar>& m) {
-  const BSpline<Scalar> pl = plucker_spline(m);
   Scalar num(0);
-  for (const auto& c : pl.ctrl()) num = std::max(num, abs_value(c));
+  for (const auto& piece : bezier_pieces(m.curve)) {
+    const auto pl = product(piece, piece, polar::Plucker{});
+    for (const auto& c : pl.coeffs()) num = std::max(num, abs_value(c));
+  }
   if (num == Scalar(0)) return num;
   const auto [r, d] = coefficient_scales(m);
   if (r == 0.0)
@@ -132,21 +135,27 @@ Scalar plucker_residual(const QMotion<Scalar>& m) {
 /// @return parameters of the poles found, ascending
 template <typename Scalar>
 std::vector<double> find_poles(const QMotion<Scalar>& m, double rel_tol = 1e-16) {
-  const BSpline<Scalar> w_exact = weight_spline(m);
-  std::vector<double> knots;
-  std::vector<double> ctrl;
-  for (const auto& k : w_exact.knots()) knots.push_back(to_double(k));
-  for (const auto& c : w_exact.ctrl()) ctrl.push_back(to_double(c));
-  const BSpline<double> w = BSpline<double>::make(w_exact.degree(), knots, ctrl);
+  // The weight's Bezier pieces, each the product of the motion's piece with itself: O(n)
+  // without assembling the degree-2n spline and taking it apart again.
+  std::vector<Bernstein<double>> stack;
   double scale = 0.0;
-  for (double c : ctrl) scale = std::max(scale, std::abs(c));
+  for (const auto& piece : bezier_pieces(m.curve)) {
+    const auto w = product(piece, piece, polar::Weight{});
+    std::vector<double> c;
+    c.reserve(w.coeffs().size());
+    for (const auto& v : w.coeffs()) {
+      c.push_back(to_double(v));
+      scale = std::max(scale, std::abs(c.back()));
+    }
+    stack.emplace_back(std::move(c), to_double(w.a()), to_double(w.b()));
+  }
+  std::reverse(stack.begin(), stack.end());  // popped from the back: left to right
   const double thr = rel_tol * scale;
   // A double zero of |Q0|^2 is located to about sqrt(eps) in double precision: leaves
   // narrower than that add nothing, and neighbouring leaves are one pole.
-  const double range = knots.back() - knots.front();
+  const double range = to_double(m.b()) - to_double(m.a());
   const double width_min = 1e-10 * range;
   std::vector<std::pair<double, double>> leaves;  // (t, weight)
-  std::vector<Bernstein<double>> stack = bezier_pieces(w);
   std::size_t budget = 200000;
   while (!stack.empty()) {
     if (budget-- == 0)

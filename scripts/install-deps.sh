@@ -12,7 +12,7 @@ packages=(
   libeigen3-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   nlohmann-json3-dev libcli11-dev
   libocct-foundation-dev libocct-modeling-data-dev libocct-modeling-algorithms-dev
-  libocct-data-exchange-dev libtbb-dev
+  libocct-data-exchange-dev libtbb-dev libsimdjson-dev
   python3 python3-dev python3-numpy pybind11-dev
 )
 if [[ "${1:-}" == "--test" ]]; then

@@ -29,16 +29,19 @@ Command add_eval(CLI::App& app) {
   return {
       sub, [o] {
         const std::string text = io::read_text_file(o->path);
-        const nlohmann::json doc = io::parse_json(text, o->path);
         const double t = io::parse_number_text(o->t, "--t").value;
         const Eigen::Vector3d x =
             o->point.empty() ? Eigen::Vector3d::Zero() : io::parse_point(o->point, "--point");
-        if (io::is_qspline_document(doc)) {
+        std::optional<io::MotionFile> fast =
+            io::parse_motion_fast(text, o->path, /*with_method=*/false);
+        nlohmann::json doc = fast ? nlohmann::json() : io::parse_json(text, o->path, "method");
+        if (!fast && io::is_qspline_document(doc)) {
           std::cout << io::qspline_eval(io::qspline_from_document(doc, o->path), t, x, o->t).dump(2)
                     << '\n';
           return 0;
         }
-        const io::MotionFile f = io::parse_motion_text(text, o->path);
+        const io::MotionFile f =
+            fast ? std::move(*fast) : io::parse_motion(std::move(doc), o->path);
         std::string warning;
         const auto out = io::motion_eval(f, t, x, &warning, o->t);
         if (!warning.empty())

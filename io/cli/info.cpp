@@ -18,23 +18,28 @@ Command add_info(CLI::App& app) {
   sub->add_option("MOTION", o->first, "Motion JSON file")->required();
   sub->add_flag("--exact", o->second,
                 "Compute the Plucker residual in exact rational arithmetic from the file's digits");
-  return {sub, [o] {
-            const std::string text = io::read_text_file(o->first);
-            const nlohmann::json doc = io::parse_json(text, o->first);
-            if (io::is_qspline_document(doc)) {
-              if (o->second)
-                throw Error(Errc::invalid_input,
-                            o->first +
-                                ": --exact is for rational motions (q-motion files); a "
-                                "quaternion spline is not rational");
-              std::cout << io::qspline_info(doc, io::qspline_from_document(doc, o->first)).dump(2)
-                        << '\n';
-              return 0;
-            }
-            std::cout << io::motion_info(io::parse_motion_text(text, o->first), o->second).dump(2)
-                      << '\n';
-            return 0;
-          }};
+  return {
+      sub, [o] {
+        const std::string text = io::read_text_file(o->first);
+        if (auto f = io::parse_motion_fast(text, o->first)) {
+          std::cout << io::motion_info(*f, o->second).dump(2) << '\n';
+          return 0;
+        }
+        nlohmann::json doc = io::parse_json(text, o->first, "method");
+        if (io::is_qspline_document(doc)) {
+          if (o->second)
+            throw Error(Errc::invalid_input,
+                        o->first +
+                            ": --exact is for rational motions (q-motion files); a "
+                            "quaternion spline is not rational");
+          std::cout << io::qspline_info(doc, io::qspline_from_document(doc, o->first)).dump(2)
+                    << '\n';
+          return 0;
+        }
+        std::cout << io::motion_info(io::parse_motion(std::move(doc), o->first), o->second).dump(2)
+                  << '\n';
+        return 0;
+      }};
 }
 
 }  // namespace qmotion::cli

@@ -17,9 +17,8 @@ Command add_poses(CLI::App& app) {
   sub->add_option("-o,--output", o->second, "Write the poses as JSON (SPEC §5) to this file");
   return {sub, [o] {
             const io::PoseSet set = io::read_poses(o->first);
-            const nlohmann::json doc = io::poses_to_json(set);
             if (!o->second.empty()) {
-              io::write_file_atomic(o->second, doc.dump(1) + "\n");
+              io::write_file_atomic(o->second, io::poses_to_json(set).dump(1) + "\n");
               std::cerr << "qmotion: wrote " << set.poses.size() << " poses to " << o->second
                         << "\n";
             } else {

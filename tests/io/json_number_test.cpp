@@ -114,5 +114,49 @@ TEST(JsonNumber, SyntaxErrorsGiveLineAndColumn) {
                            {"/nonexistent/x.json", "cannot open"}));
 }
 
+TEST(JsonNumber, TheFastParserBuildsTheReferenceDocument) {
+  const std::vector<std::string> texts = {
+      R"({"a": 0.1, "b": [1, -2.50e-3, 12345678901234567890123, -9223372036854775808,
+          18446744073709551615], "c": "3/4", "d": {"e": [true, false, null, []], "f": {}}})",
+      R"([1.0, "\u00e9\n\"", {"k": 1E+2}, [[[]]], -0, -0.0, 5e-324])",
+      R"({"dup": 1, "dup": 2.5})",
+      "  [ 1 ,\t2 ]\n",
+      R"({"method": {"x": 0.30000000000000004, "y": [1.5, 2]}, "z": 0.1})",
+  };
+  for (const auto& t : texts) {
+    EXPECT_EQ(parse_json(t, "m"), io::parse_json_reference(t, "m")) << t;
+    // The plain member keeps float literals as numbers, like nlohmann's own parse.
+    const auto plain = parse_json(t, "m", "method");
+    if (plain.is_object() && plain.contains("method")) {
+      EXPECT_EQ(plain["method"], nlohmann::json::parse(t)["method"]) << t;
+      EXPECT_EQ(plain["z"], "0.1") << t;
+    }
+  }
+}
+
+TEST(JsonNumber, TheFastParserRefusesWhatTheReferenceRefuses) {
+  const std::vector<std::string> bad = {
+      "[1] 2",      "[1,]",        R"({"a": tru})", "[01]",       "[1.]",       "[.5]",
+      "[1e]",       R"({"a":1,})", R"(["\x"])",     "[\"\xff\"]", "[-]",        "[1e999]",
+      R"({"a" 1})", "{",           "[1 2]",         "[NaN]",      R"({"a":[}])"};
+  for (const auto& t : bad) {
+    EXPECT_TRUE(throws_error([&] { io::parse_json_reference(t, "r.json"); }, Errc::invalid_input,
+                             {"r.json"}))
+        << t;
+    EXPECT_TRUE(throws_error([&] { parse_json(t, "f.json"); }, Errc::invalid_input,
+                             {"f.json", "invalid JSON"}))
+        << t;
+  }
+}
+
+TEST(JsonNumber, FilesAreReadWithRoomToParseInPlace) {
+  const auto path = std::filesystem::temp_directory_path() / "qmotion_padding_test.json";
+  { std::ofstream(path) << "[1, 2, 3]"; }
+  const std::string text = io::read_text_file(path.string());
+  std::filesystem::remove(path);
+  EXPECT_EQ(text, "[1, 2, 3]");
+  EXPECT_GE(text.capacity(), text.size() + io::kReadPadding);
+}
+
 }  // namespace
 }  // namespace qmotion::test

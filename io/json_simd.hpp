@@ -1,0 +1,41 @@
+// io/json_simd.hpp: simdjson's on-demand parser behind qmotion's readers. Internal to
+// qmotion_io (not installed: simdjson is a private dependency).
+#pragma once
+#include <simdjson.h>
+
+#include <nlohmann/json.hpp>
+#include <qmotion/io/json_number.hpp>
+#include <string>
+
+static_assert(simdjson::SIMDJSON_PADDING <= qmotion::io::kReadPadding);
+
+namespace qmotion::io::simd {
+
+namespace sj = simdjson::ondemand;
+
+/// A document being read with this thread's parser: the text in place when it has
+/// simdjson's padding as spare capacity (read_text_file leaves it), else a padded copy. `ok` is
+/// false when simdjson refused the text outright.
+struct Document {
+  explicit Document(const std::string& text);  ///< text must outlive the Document
+  simdjson::padded_string padded;
+  sj::document doc;
+  bool ok = false;
+  /// True when nothing but white space follows the root value (the on-demand parser
+  /// stops after it, so trailing content is checked here).
+  bool at_end();
+};
+
+/// Builds `out` from v, as parse_json would: float literals as their source text, or as
+/// doubles when `plain`. False on any error (the caller then falls back to nlohmann, which
+/// words the message).
+bool build(sj::value v, nlohmann::json& out, bool plain);
+/// Validates v whole without building anything.
+bool check(sj::value v);
+
+/// The number at v (a JSON number, or a string holding a plain decimal literal) with its
+/// source text, as read_number would read it. False for anything else (including "p/q"
+/// strings): the caller falls back to the DOM reader.
+bool number(sj::value v, Number& out);
+
+}  // namespace qmotion::io::simd
