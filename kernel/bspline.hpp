@@ -197,13 +197,73 @@ Bernstein<Coef> bezier_piece(const BSpline<Coef>& s, const coef_scalar_t<Coef>& 
   return Bernstein<Coef>(std::move(c), x, y);
 }
 
-/// Decomposition into Bezier pieces, one per non-empty knot span.
+/// Decomposition into Bezier pieces, one per non-empty knot span: every interior knot
+/// raised to multiplicity p by knot insertion, O(p^2) per span (Piegl and Tiller, The
+/// NURBS Book, A5.6) where bezier_piece's blossoms take O(p^3).
 template <typename Coef>
 std::vector<Bernstein<Coef>> bezier_pieces(const BSpline<Coef>& s) {
-  const auto x = s.breakpoints();
+  using S = coef_scalar_t<Coef>;
+  const std::vector<S>& U = s.knots();
+  const std::vector<Coef>& P = s.ctrl();
+  const std::size_t p = static_cast<std::size_t>(s.degree());
+  const std::size_t m = U.size() - 1;
   std::vector<Bernstein<Coef>> pieces;
-  for (std::size_t k = 0; k + 1 < x.size(); ++k) pieces.push_back(bezier_piece(s, x[k], x[k + 1]));
+  if (p == 0) {  // piecewise constant: the poles themselves
+    for (std::size_t k = 0; k < P.size(); ++k)
+      if (U[k] < U[k + 1]) pieces.emplace_back(std::vector<Coef>{P[k]}, U[k], U[k + 1]);
+    return pieces;
+  }
+  std::vector<Coef> Q(P.begin(), P.begin() + static_cast<std::ptrdiff_t>(p + 1)), next(p + 1, P[0]);
+  std::vector<S> alphas(p + 1, S(0));
+  std::size_t a = p, b = p + 1;
+  while (b < m) {
+    const std::size_t i = b;
+    while (b < m && U[b + 1] == U[b]) ++b;
+    const std::size_t mult = b - i + 1;
+    if (mult < p) {
+      const S numer = S(U[b] - U[a]);
+      for (std::size_t j = p; j > mult; --j) alphas[j - mult - 1] = S(numer / S(U[a + j] - U[a]));
+      const std::size_t r = p - mult;
+      for (std::size_t j = 1; j <= r; ++j) {
+        const std::size_t save = r - j, first = mult + j;
+        for (std::size_t k = p; k >= first; --k)
+          Q[k] = detail::lerp(Q[k - 1], Q[k], alphas[k - first]);
+        next[save] = Q[p];
+      }
+    }
+    const S x0 = U[a], x1 = U[b];
+    if (b < m) {
+      for (std::size_t k = p - std::min(mult, p); k <= p; ++k) next[k] = P[b - p + k];
+      a = b;
+      ++b;
+    }
+    pieces.emplace_back(Q, x0, x1);
+    Q.swap(next);
+  }
   return pieces;
+}
+
+/// The Bezier pieces of s on the spans between consecutive breakpoints x (sorted, ends at
+/// s's ends, including all of s's own breakpoints): its own pieces, subdivided.
+template <typename Coef>
+std::vector<Bernstein<Coef>> bezier_pieces(const BSpline<Coef>& s,
+                                           const std::vector<coef_scalar_t<Coef>>& x) {
+  std::vector<Bernstein<Coef>> out;
+  out.reserve(x.size());
+  std::size_t k = 1;
+  for (auto& own : bezier_pieces(s)) {
+    Bernstein<Coef> rest = std::move(own);
+    for (; k + 1 < x.size() && x[k] < rest.b(); ++k) {
+      auto halves = subdivide(rest, x[k]);
+      out.push_back(std::move(halves.first));
+      rest = std::move(halves.second);
+    }
+    out.push_back(std::move(rest));
+    ++k;
+  }
+  if (out.size() + 1 != x.size())
+    throw Error(Errc::internal, "bezier_pieces: the breakpoints do not refine the spline's");
+  return out;
 }
 
 /// Reassembles a spline of the given degree and clamped knot vector from Bezier pieces on
@@ -282,9 +342,10 @@ auto product(const BSpline<A>& s, const BSpline<B>& r, Op op = {}) {
   for (const auto& v : r.breakpoints()) x.push_back(v);
   std::sort(x.begin(), x.end());
   x.erase(std::unique(x.begin(), x.end()), x.end());
+  const auto ps = bezier_pieces(s, x), pr = bezier_pieces(r, x);
   std::vector<Bernstein<R>> pieces;
-  for (std::size_t k = 0; k + 1 < x.size(); ++k)
-    pieces.push_back(product(bezier_piece(s, x[k], x[k + 1]), bezier_piece(r, x[k], x[k + 1]), op));
+  pieces.reserve(ps.size());
+  for (std::size_t k = 0; k < ps.size(); ++k) pieces.push_back(product(ps[k], pr[k], op));
   return from_bezier_pieces(pieces, d, joined_knots(x, d, s, r));
 }
 
@@ -338,14 +399,12 @@ auto combine(const BSpline<A>& a, const BSpline<B>& b, F f) {
   std::sort(x.begin(), x.end());
   x.erase(std::unique(x.begin(), x.end()), x.end());
   const int d = std::max(a.degree(), b.degree());
-  using R =
-      typename std::decay_t<decltype(f(bezier_piece(a, x[0], x[1]), bezier_piece(b, x[0], x[1])))>;
+  const auto pas = bezier_pieces(a, x), pbs = bezier_pieces(b, x);
+  using R = typename std::decay_t<decltype(f(pas[0], pbs[0]))>;
   std::vector<R> pieces;
-  for (std::size_t k = 0; k + 1 < x.size(); ++k) {
-    const auto pa = bezier_piece(a, x[k], x[k + 1]);
-    const auto pb = bezier_piece(b, x[k], x[k + 1]);
-    pieces.push_back(f(elevate(pa, d - pa.degree()), elevate(pb, d - pb.degree())));
-  }
+  pieces.reserve(pas.size());
+  for (std::size_t k = 0; k < pas.size(); ++k)
+    pieces.push_back(f(elevate(pas[k], d - pas[k].degree()), elevate(pbs[k], d - pbs[k].degree())));
   return from_bezier_pieces(pieces, d, joined_knots(x, d, a, b));
 }
 

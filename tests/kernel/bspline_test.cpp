@@ -79,6 +79,22 @@ void check_spline_ops(std::mt19937& g) {
         while (k + 1 < pieces.size() && !(t < pieces[k].b())) ++k;
         ASSERT_TRUE(coef_near(kernel::evaluate(pieces[k], t), v, 1e-12));
       }
+      // Knot insertion (A5.6) gives the blossoms bezier_piece computes, and a refinement of
+      // the breakpoints gives the pieces of the finer spans.
+      const auto same = [](const auto& u, const auto& v) {
+        if (u.a() != v.a() || u.b() != v.b() || u.coeffs().size() != v.coeffs().size())
+          return false;
+        for (std::size_t i = 0; i < u.coeffs().size(); ++i)
+          if (!coef_near(u.coeffs()[i], v.coeffs()[i], 1e-12)) return false;
+        return true;
+      };
+      for (const auto& piece : pieces)
+        ASSERT_TRUE(same(piece, kernel::bezier_piece(s, piece.a(), piece.b()))) << "p=" << p;
+      const std::vector<S> x = {S(0), S(1) / S(4), S(1) / S(2), S(1), S(5) / S(4), S(2), S(3)};
+      const auto fine = kernel::bezier_pieces(s, x);
+      ASSERT_EQ(fine.size(), 6u);
+      for (std::size_t k = 0; k < fine.size(); ++k)
+        ASSERT_TRUE(same(fine[k], kernel::bezier_piece(s, x[k], x[k + 1]))) << "p=" << p;
       // Reassembly gives back the same poles (exactly for rationals).
       for (std::size_t i = 0; i < s.ctrl().size(); ++i)
         ASSERT_TRUE(coef_near(back.ctrl()[i], s.ctrl()[i], 1e-10));
@@ -88,6 +104,15 @@ void check_spline_ops(std::mt19937& g) {
 TYPED_TEST(BSplineTest, InsertionDecompositionAndEvaluationAgree) {
   using S = TypeParam;
   std::mt19937 g(21);
+  {  // degree 0: the poles are the pieces
+    const auto s0 = BSpline<S>::make(0, {S(0), S(1), S(2), S(3)}, {S(5), S(-1), S(2)});
+    const auto p0 = kernel::bezier_pieces(s0);
+    ASSERT_EQ(p0.size(), 3u);
+    for (std::size_t k = 0; k < 3; ++k) {
+      EXPECT_EQ(p0[k].coeffs()[0], s0.ctrl()[k]);
+      EXPECT_EQ(p0[k].a(), S(int(k)));
+    }
+  }
   check_spline_ops<S>(g);
   check_spline_ops<Eigen::Matrix<S, 3, 1>>(g);
   check_spline_ops<kernel::DualQuaternion<S>>(g);
