@@ -342,7 +342,8 @@ auto product(const BSpline<A>& s, const BSpline<B>& r, Op op = {}) {
   for (const auto& v : r.breakpoints()) x.push_back(v);
   std::sort(x.begin(), x.end());
   x.erase(std::unique(x.begin(), x.end()), x.end());
-  const auto ps = bezier_pieces(s, x), pr = bezier_pieces(r, x);
+  const auto ps = bezier_pieces(s, x);
+  const auto pr = bezier_pieces(r, x);
   std::vector<Bernstein<R>> pieces;
   pieces.reserve(ps.size());
   for (std::size_t k = 0; k < ps.size(); ++k) pieces.push_back(product(ps[k], pr[k], op));
@@ -399,7 +400,8 @@ auto combine(const BSpline<A>& a, const BSpline<B>& b, F f) {
   std::sort(x.begin(), x.end());
   x.erase(std::unique(x.begin(), x.end()), x.end());
   const int d = std::max(a.degree(), b.degree());
-  const auto pas = bezier_pieces(a, x), pbs = bezier_pieces(b, x);
+  const auto pas = bezier_pieces(a, x);
+  const auto pbs = bezier_pieces(b, x);
   using R = typename std::decay_t<decltype(f(pas[0], pbs[0]))>;
   std::vector<R> pieces;
   pieces.reserve(pas.size());
