@@ -389,11 +389,10 @@ std::optional<MotionFile> parse_motion_fast(const std::string& text, const std::
   return f;
 }
 
-MotionFile parse_motion(const json& doc, const std::string& source) {
-  return parse_motion(json(doc), source);
-}
+namespace {
 
-MotionFile parse_motion(json&& doc, const std::string& source) {
+/// The file's fields, the method block checked but left to the caller to copy or move in.
+MotionFile parse_motion_fields(const json& doc, const std::string& source) {
   MotionFile f;
   f.source = source;
   if (!doc.is_object())
@@ -464,8 +463,21 @@ MotionFile parse_motion(json&& doc, const std::string& source) {
                                            ": method: expected an object (how the motion "
                                            "was made), found " +
                                            std::string(doc["method"].type_name()));
-    f.method = std::move(doc["method"]);
   }
+  return f;
+}
+
+}  // namespace
+
+MotionFile parse_motion(const json& doc, const std::string& source) {
+  MotionFile f = parse_motion_fields(doc, source);
+  if (doc.contains("method")) f.method = doc["method"];
+  return f;
+}
+
+MotionFile parse_motion(json&& doc, const std::string& source) {
+  MotionFile f = parse_motion_fields(doc, source);
+  if (doc.contains("method")) f.method = std::move(doc["method"]);
   return f;
 }
 
