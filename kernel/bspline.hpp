@@ -297,9 +297,20 @@ BSpline<Coef> from_bezier_pieces(const std::vector<Bernstein<Coef>>& pieces, int
     if (!found) throw Error(Errc::internal, "pole without a non-empty span");
     const std::size_t k =
         static_cast<std::size_t>(std::lower_bound(x.begin(), x.end(), knots[best]) - x.begin());
-    std::vector<S> u(knots.begin() + static_cast<std::ptrdiff_t>(i + 1),
-                     knots.begin() + static_cast<std::ptrdiff_t>(i + d + 1));
-    ctrl.push_back(d == 0 ? pieces[k][0] : blossom(pieces[k], u));
+    if (d == 0) {
+      ctrl.push_back(pieces[k][0]);
+      continue;
+    }
+    // A window made of the piece's own end points only, (x_k^(d-m), x_(k+1)^m), blossoms to
+    // its Bernstein coefficient m: no evaluation (every pole of a Bezier-like knot vector).
+    const auto first = knots.begin() + static_cast<std::ptrdiff_t>(i + 1);
+    const auto last = first + static_cast<std::ptrdiff_t>(d);
+    const auto ends = std::count(first, last, x[k]), m = std::count(first, last, x[k + 1]);
+    if (ends + m == static_cast<std::ptrdiff_t>(d)) {
+      ctrl.push_back(pieces[k][static_cast<int>(m)]);
+      continue;
+    }
+    ctrl.push_back(blossom(pieces[k], std::vector<S>(first, last)));
   }
   return BSpline<Coef>::make(degree, std::move(knots), std::move(ctrl));
 }
