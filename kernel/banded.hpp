@@ -1,5 +1,6 @@
 // kernel/banded.hpp
 #pragma once
+#include <cmath>
 #include <qmotion/kernel/linear_solve.hpp>
 #include <string>
 #include <vector>
@@ -65,6 +66,62 @@ MatX<Scalar> solve_banded(BandMatrix<Scalar> A, MatX<Scalar> B, const std::strin
     for (Eigen::Index c = 0; c < B.cols(); ++c) B(k, c) = Scalar(B(k, c) / A(k, k));
   }
   return B;
+}
+
+/// Least squares: min |A X - B| (Frobenius) for an m x n matrix A whose row r holds its
+/// w + 1 entries rows(r, 0..w) in the consecutive columns first[r] .. first[r] + w (columns
+/// past n - 1 are ignored). Givens rotations fold the rows one by one into a banded upper
+/// triangle R (n x (w + 1)), then back substitution: O(m w (w + k)) time, O(n (w + k))
+/// memory, as stable as a dense QR. Throws Errc::numerical_failure naming `what` when A has
+/// a zero column in R (rank deficient).
+/// @see Lawson & Hanson, Solving Least Squares Problems, ch. 27 (sequential banded QR)
+inline Eigen::MatrixXd least_squares_banded(Eigen::Index n, int w, const std::vector<int>& first,
+                                            const Eigen::MatrixXd& rows, const Eigen::MatrixXd& B,
+                                            const std::string& what) {
+  const Eigen::Index m = rows.rows(), k = B.cols();
+  QMOTION_EXPECTS(
+      rows.cols() == w + 1 && B.rows() == m && first.size() == static_cast<std::size_t>(m),
+      "least_squares_banded: sizes");
+  Eigen::MatrixXd R = Eigen::MatrixXd::Zero(n, w + 1), Z = Eigen::MatrixXd::Zero(n, k);
+  std::vector<char> filled(static_cast<std::size_t>(n), 0);
+  Eigen::VectorXd a(w + 1);
+  Eigen::RowVectorXd b(k);
+  for (Eigen::Index r = 0; r < m; ++r) {
+    a = rows.row(r).transpose();
+    b = B.row(r);
+    const Eigen::Index c0 = first[static_cast<std::size_t>(r)];
+    for (int j = 0; j <= w && c0 + j < n; ++j) {
+      const Eigen::Index col = c0 + j;
+      const double x = a(j);
+      if (x == 0) continue;
+      const int len = w - j + 1;
+      if (!filled[static_cast<std::size_t>(col)]) {  // an empty row of R takes the rest
+        R.row(col).head(len) = a.segment(j, len).transpose();
+        Z.row(col) = b;
+        filled[static_cast<std::size_t>(col)] = 1;
+        break;
+      }
+      const double y = R(col, 0), h = std::hypot(y, x), c = y / h, s = x / h;
+      for (int d = 0; d < len; ++d) {
+        const double rv = R(col, d), av = a(j + d);
+        R(col, d) = c * rv + s * av;
+        a(j + d) = c * av - s * rv;
+      }
+      const Eigen::RowVectorXd z = Z.row(col);
+      Z.row(col) = c * z + s * b;
+      b = c * b - s * z;
+    }
+  }
+  Eigen::MatrixXd X(n, k);
+  const double scale = R.col(0).cwiseAbs().maxCoeff();
+  for (Eigen::Index i = n - 1; i >= 0; --i) {
+    if (!(std::abs(R(i, 0)) > 1e-14 * scale))
+      throw Error(Errc::numerical_failure, what + ": the least-squares system is rank deficient");
+    Eigen::RowVectorXd v = Z.row(i);
+    for (int d = 1; d <= w && i + d < n; ++d) v -= R(i, d) * X.row(i + d);
+    X.row(i) = v / R(i, 0);
+  }
+  return X;
 }
 
 }  // namespace qmotion::kernel

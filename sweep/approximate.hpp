@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <qmotion/kernel/banded.hpp>
 #include <qmotion/kernel/bspline.hpp>
 #include <qmotion/sweep/weights.hpp>
 #include <vector>
@@ -20,10 +21,10 @@ struct Approximation {
 
 /// Approximates homogeneous curves h_j (one parameter interval) by B-splines of degree
 /// `degree` on one common uniform knot vector (u stays t), fitting the homogeneous
-/// coordinates by least squares at dense samples. The span count doubles until the largest
-/// Cartesian deviation measured at 8x denser points is within `tol`. Weights are made
-/// positive afterwards by knot insertion. Throws Errc::numerical_failure when 4096 spans do
-/// not reach the tolerance.
+/// coordinates by least squares at dense samples (banded QR: O(samples) per fit). The span count
+/// doubles until the largest Cartesian deviation measured at 8x denser points is within `tol`.
+/// Weights are made positive afterwards by knot insertion. Throws Errc::numerical_failure when 4096
+/// spans do not reach the tolerance.
 inline Approximation approximate_homogeneous(const std::vector<kernel::BSpline<Eigen::Vector4d>>& h,
                                              int degree, double tol) {
   const double a = h.front().a(), b = h.front().b();
@@ -34,8 +35,9 @@ inline Approximation approximate_homogeneous(const std::vector<kernel::BSpline<E
     T.insert(T.end(), static_cast<std::size_t>(degree + 1), b);
     const int n = spans + degree;  // poles
     const int samples = 4 * n + 1;
-    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(samples, n),
-                    Y(samples, 4 * static_cast<Eigen::Index>(h.size()));
+    // Row s of the collocation matrix: degree + 1 basis values from column span - degree.
+    Eigen::MatrixXd A(samples, degree + 1), Y(samples, 4 * static_cast<Eigen::Index>(h.size()));
+    std::vector<int> first(static_cast<std::size_t>(samples));
     const auto span_of = [&](double t) {
       int j =
           static_cast<int>(std::upper_bound(T.begin() + degree, T.begin() + n, t) - T.begin()) - 1;
@@ -45,11 +47,13 @@ inline Approximation approximate_homogeneous(const std::vector<kernel::BSpline<E
       const double t = a + (b - a) * s / (samples - 1);
       const int j = span_of(t);
       const auto N = basis_functions(T, j, degree, t);
-      for (int k = 0; k <= degree; ++k) A(s, j - degree + k) = N[static_cast<std::size_t>(k)];
+      first[static_cast<std::size_t>(s)] = j - degree;
+      for (int k = 0; k <= degree; ++k) A(s, k) = N[static_cast<std::size_t>(k)];
       for (std::size_t c = 0; c < h.size(); ++c)
         Y.block<1, 4>(s, static_cast<Eigen::Index>(4 * c)) = kernel::evaluate(h[c], t).transpose();
     }
-    const Eigen::MatrixXd P = A.colPivHouseholderQr().solve(Y);
+    const Eigen::MatrixXd P =
+        kernel::least_squares_banded(n, degree, first, A, Y, "degree-capped approximation");
     Approximation out;
     out.spans = spans;
     for (std::size_t c = 0; c < h.size(); ++c) {

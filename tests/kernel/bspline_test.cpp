@@ -70,6 +70,11 @@ void check_spline_ops(std::mt19937& g) {
       const auto pieces = kernel::bezier_pieces(s);
       ASSERT_EQ(pieces.size(), 4u);
       const auto back = kernel::from_bezier_pieces(pieces, p, s.knots());
+      // The same poles: those whose knot window is a span's end points are read off the
+      // pieces' Bernstein coefficients, the others blossomed (both exact in rationals).
+      ASSERT_EQ(back.ctrl().size(), s.ctrl().size());
+      for (std::size_t i = 0; i < s.ctrl().size(); ++i)
+        ASSERT_TRUE(coef_near(back.ctrl()[i], s.ctrl()[i], 1e-12)) << "p=" << p << " pole " << i;
       for (const S& t : sample_params<S>(g, 20)) {
         const C v = kernel::evaluate(s, t);
         ASSERT_TRUE(coef_near(cox_de_boor(s, t), v, 1e-12)) << "p=" << p;

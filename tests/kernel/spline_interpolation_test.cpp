@@ -241,6 +241,36 @@ TEST(Banded, SolvesLikeADenseSolver) {
       Error);
 }
 
+TEST(Banded, LeastSquaresMatchesADenseQr) {
+  // B-spline collocation at uniform samples (the degree-capped fit's system), degrees 1-9,
+  // with rows that run past the last column and a few exact zeros: the banded Givens QR
+  // gives Eigen's dense solution, and a zero column is refused.
+  std::mt19937 g(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int w = 1; w <= 9; ++w) {
+    const int n = 60, m = 4 * n + 1;
+    kernel::MatX<double> rows(m, w + 1), dense = kernel::MatX<double>::Zero(m, n), B(m, 3);
+    std::vector<int> first(static_cast<std::size_t>(m));
+    for (int r = 0; r < m; ++r) {
+      first[static_cast<std::size_t>(r)] = std::min(n - 1, r * (n - w) / (m - 1));
+      for (int d = 0; d <= w; ++d) {
+        const double v = (r + d) % 11 == 0 ? 0.0 : u(g);
+        rows(r, d) = v;
+        if (first[static_cast<std::size_t>(r)] + d < n)
+          dense(r, first[static_cast<std::size_t>(r)] + d) = v;
+      }
+      for (int c = 0; c < 3; ++c) B(r, c) = u(g);
+    }
+    const auto x = kernel::least_squares_banded(n, w, first, rows, B, "test");
+    const kernel::MatX<double> ref = dense.colPivHouseholderQr().solve(B);
+    EXPECT_LE((x - ref).norm(), 1e-10 * ref.norm()) << "w=" << w;
+  }
+  kernel::MatX<double> rows = kernel::MatX<double>::Ones(4, 2);
+  EXPECT_THROW(kernel::least_squares_banded(4, 1, {0, 0, 1, 1}, rows,
+                                            kernel::MatX<double>::Ones(4, 1), "gap"),
+               Error);
+}
+
 TEST(Bessel, EstimatesAreExactForQuadraticMotion) {
   // Positions on a parabola in t: the Bessel estimates are its exact derivative.
   const std::vector<double> t = {0, 0.5, 1.7, 2.0, 3.1};
