@@ -80,47 +80,80 @@ kernel::BSpline<Eigen::Matrix<Scalar, 3, 1>> add(
 template <typename Scalar>
 kernel::BSpline<Eigen::Matrix<Scalar, 4, 4>> matrix_from_factors(const MotionFactors<Scalar>& f) {
   using V3 = Eigen::Matrix<Scalar, 3, 1>;
+  using M3 = Eigen::Matrix<Scalar, 3, 3>;
   using M4 = Eigen::Matrix<Scalar, 4, 4>;
   using Q = kernel::Quaternion<Scalar>;
-  const Scalar a = f.rotation.a(), b = f.rotation.b();
-  const auto rc = kernel::map_coeffs(f.rotation, [](const Q& q) { return q.conj(); });
-  const auto n2 =
-      kernel::map_coeffs(kernel::product(f.rotation, rc), [](const Q& q) { return Scalar(q.w()); });
-  kernel::BSpline<V3> transl = f.translation;
-  switch (f.method) {
-    case kernel::TranslationMethod::tr:
-      transl = kernel::product(n2, f.translation);
-      break;
-    case kernel::TranslationMethod::trt:
-      transl = detail::add(kernel::product(n2, f.translation),
-                           detail::rotate(f.rotation, *f.translation2));
-      break;
-    case kernel::TranslationMethod::minimal:
-      break;
+  using kernel::Bernstein;
+  const auto method = f.method;
+  // Every factor taken apart once on the common breakpoints; each span's matrix is then
+  // built from Bezier products alone and the spline assembled once (no intermediate
+  // spline products, each of which would take its factors apart and reassemble them).
+  std::vector<Scalar> x = f.rotation.breakpoints();
+  for (const auto& v : f.translation.breakpoints()) x.push_back(v);
+  if (f.translation2)
+    for (const auto& v : f.translation2->breakpoints()) x.push_back(v);
+  std::sort(x.begin(), x.end());
+  x.erase(std::unique(x.begin(), x.end()), x.end());
+  const auto rot = kernel::bezier_pieces(f.rotation, x);
+  const auto tr1 = kernel::bezier_pieces(f.translation, x);
+  std::vector<Bernstein<V3>> tr2;
+  if (method == kernel::TranslationMethod::trt) tr2 = kernel::bezier_pieces(*f.translation2, x);
+  // The polar form of q -> [[|q|^2, 0], [0, U(q)]]: its Bezier product with itself is the
+  // piece's |Q_rot|^2 and U, degree 2k.
+  const auto polar = [](const Q& p, const Q& q) {
+    const Q s = p + q;
+    M4 m = M4::Zero();
+    m(0, 0) = p.dot(q);
+    m.template block<3, 3>(1, 1) =
+        ((kernel::rotation_matrix_unnormalized(s) - kernel::rotation_matrix_unnormalized(p) -
+          kernel::rotation_matrix_unnormalized(q)) /
+         Scalar(2))
+            .eval();
+    return m;
+  };
+  const auto times = [](const M3& u, const V3& v) { return V3(u * v); };
+  std::vector<Bernstein<M4>> pieces;
+  pieces.reserve(rot.size());
+  int d = 0;
+  for (std::size_t k = 0; k < rot.size(); ++k) {
+    const Bernstein<M4> nu = kernel::product(rot[k], rot[k], polar);
+    std::vector<Scalar> n2c;
+    std::vector<M3> uc;
+    for (const auto& m : nu.coeffs()) {
+      n2c.push_back(m(0, 0));
+      uc.push_back(m.template block<3, 3>(1, 1));
+    }
+    const Bernstein<Scalar> n2(std::move(n2c), nu.a(), nu.b());
+    // Column 0 below the weight: a = |Q_rot|^2 p (TR), |Q_rot|^2 p1 + U p2 (TRT), w (minimal).
+    Bernstein<V3> a = tr1[k];
+    if (method != kernel::TranslationMethod::minimal) a = kernel::product(n2, tr1[k]);
+    if (method == kernel::TranslationMethod::trt) {
+      auto b = kernel::product(Bernstein<M3>(std::move(uc), nu.a(), nu.b()), tr2[k], times);
+      const int e = std::max(a.degree(), b.degree());
+      a = kernel::elevate(a, e - a.degree());
+      b = kernel::elevate(b, e - b.degree());
+      std::vector<V3> c;
+      for (int i = 0; i <= e; ++i) c.push_back(V3(a[i] + b[i]));
+      a = Bernstein<V3>(std::move(c), a.a(), a.b());
+    }
+    d = std::max(nu.degree(), a.degree());
+    const auto m = kernel::elevate(nu, d - nu.degree());
+    a = kernel::elevate(a, d - a.degree());
+    std::vector<M4> c = m.coeffs();
+    for (int i = 0; i <= d; ++i) c[static_cast<std::size_t>(i)].template block<3, 1>(1, 0) = a[i];
+    pieces.emplace_back(std::move(c), m.a(), m.b());
   }
-  // Column 0: (|Q_rot|^2, a); columns 1-3: (0, U e_c).
-  auto M = kernel::combine(n2, transl,
-                           [](const kernel::Bernstein<Scalar>& w, const kernel::Bernstein<V3>& v) {
-                             std::vector<M4> c;
-                             for (int i = 0; i <= w.degree(); ++i) {
-                               M4 m = M4::Zero();
-                               m(0, 0) = w[i];
-                               m.template block<3, 1>(1, 0) = v[i];
-                               c.push_back(m);
-                             }
-                             return kernel::Bernstein<M4>(std::move(c), w.a(), w.b());
-                           });
-  for (int col = 1; col <= 3; ++col) {
-    const auto u = detail::rotate(f.rotation, detail::constant_vector(V3(V3::Unit(col - 1)), a, b));
-    M = kernel::combine(M, u,
-                        [col](const kernel::Bernstein<M4>& m, const kernel::Bernstein<V3>& v) {
-                          std::vector<M4> c = m.coeffs();
-                          for (int i = 0; i <= m.degree(); ++i)
-                            c[static_cast<std::size_t>(i)].template block<3, 1>(1, col) = v[i];
-                          return kernel::Bernstein<M4>(std::move(c), m.a(), m.b());
-                        });
+  // At a breakpoint the matrix is as smooth as the least smooth factor there.
+  std::vector<Scalar> knots(static_cast<std::size_t>(d + 1), x.front());
+  for (std::size_t k = 1; k + 1 < x.size(); ++k) {
+    int cont = std::min(kernel::continuity_at(f.rotation, x[k]),
+                        kernel::continuity_at(f.translation, x[k]));
+    if (method == kernel::TranslationMethod::trt)
+      cont = std::min(cont, kernel::continuity_at(*f.translation2, x[k]));
+    knots.insert(knots.end(), static_cast<std::size_t>(std::clamp(d - cont, 0, d + 1)), x[k]);
   }
-  return M;
+  knots.insert(knots.end(), static_cast<std::size_t>(d + 1), x.back());
+  return kernel::from_bezier_pieces(pieces, d, std::move(knots));
 }
 
 /// y = M X for a matrix spline M.

@@ -5,6 +5,7 @@
 #include <qmotion/io/poses.hpp>
 #include <qmotion/kernel/interpolation.hpp>
 #include <qmotion/kernel/parametrization.hpp>
+#include <qmotion/kernel/spline_interpolation.hpp>
 #include <qmotion/sweep/approximate.hpp>
 #include <qmotion/sweep/profiles.hpp>
 #include <qmotion/sweep/surface.hpp>
@@ -136,6 +137,41 @@ TEST(Trajectory, ExactlyOnTheMotionInRationalArithmetic) {
           ASSERT_EQ(Rational(a(c) * e(d)), Rational(a(d) * e(c))) << "t = " << s;
     }
   }
+}
+
+TEST(Trajectory, SplineMatrixIsTheMotionWithTheFactorsContinuity) {
+  // The matrix spline of a B-spline motion's factors (built span by span, assembled once) is
+  // the motion's matrix at every parameter, exactly, and at each interior breakpoint exactly
+  // as smooth as the less smooth factor there.
+  const auto P = io::to_poses_exact(io::read_poses(test_data("poses/rational_exact.json")));
+  std::vector<Rational> t;
+  for (const auto& p : P) t.push_back(*p.t);
+  for (auto tr : {TranslationMethod::tr, TranslationMethod::minimal})
+    for (int k = 1; k <= 2; ++k) {
+      kernel::SplineOptions o;
+      o.translation = tr;
+      o.k = k;
+      o.l = 2;
+      const auto r = kernel::interpolate_bspline(P, t, o);
+      const auto& f = *r.factors;
+      const auto M = sweep::matrix_from_factors(f);
+      ASSERT_GT(M.breakpoints().size(), 2u);
+      for (const Rational& x : M.breakpoints()) {
+        if (x == M.a() || x == M.b()) continue;
+        EXPECT_EQ(kernel::continuity_at(M, x), std::min(kernel::continuity_at(f.rotation, x),
+                                                        kernel::continuity_at(f.translation, x)));
+      }
+      std::vector<Rational> s = M.breakpoints();
+      for (int i = 0; i <= 9; ++i) s.push_back(M.a() + (M.b() - M.a()) * Rational(i) / Rational(9));
+      const sweep::Vec4<Rational> X(Rational(3), Rational(1), Rational(-2),
+                                    Rational(5) / Rational(7));
+      for (const Rational& u : s) {
+        const sweep::Vec4<Rational> a = kernel::evaluate(M, u) * X;
+        const auto e = kernel::apply(kernel::evaluate(r.curve, u), X);
+        for (int c = 0; c < 4; ++c)
+          for (int d = 0; d < 4; ++d) ASSERT_EQ(Rational(a(c) * e(d)), Rational(a(d) * e(c)));
+      }
+    }
 }
 
 std::vector<std::pair<std::string, sweep::NurbsCurve<double>>> profiles() {
