@@ -17,7 +17,7 @@ packages=(
 )
 if [[ "${1:-}" == "--test" ]]; then
   packages+=(googletest libgtest-dev libgmock-dev libbenchmark-dev clang-format git python3 python3-pytest freecad-python3
-    clang libclang-rt-14-dev linuxcnc-uspace)
+    clang libclang-rt-14-dev linuxcnc-uspace time)
 fi
 
 missing=()

@@ -1,0 +1,929 @@
+// tests/bench/occt_peers.cpp: qmotion's exact kinematic sweep side by side with the
+// routes an OpenCASCADE user has to the same surface (issue 13, item 6):
+//   1. qmotion: the exact rational surface (sweep::kinematic_surface), written by io::write_step;
+//   2. GeomFill_Sweep with a location law that evaluates our motion exactly (value and
+//      first and second derivatives of the rational frame), at several Tol3d and MaxDegree;
+//   3. BRepOffsetAPI_MakePipeShell along the origin's exact trajectory, in the default mode
+//      and with an auxiliary spine (the trajectory of a second body point);
+//   4. GeomAPI_PointsToBSplineSurface fitted to a grid of exact points;
+//   5. BRepOffsetAPI_ThruSections lofted through exact sections M(t_i) c.
+// For each: construction time (median of repeats), poles, degrees, STEP size, write and
+// read-back time, and the true maximum deviation of the surface read back from STEP from
+// the exact motion-applied profile, measured by our own dense evaluation both ways (each
+// sample's nearest point found from a k-d tree of dense samples of the other surface, then
+// Gauss-Newton), never by OpenCASCADE's projection. Prints a Markdown table.
+//
+//   build/tests/bench/occt_peers [--smoke] [--repeats N] [--out FILE]
+//
+// --smoke (CTest) runs one motion and one profile. The exit status is 1 when the exact
+// route's deviation exceeds 1e-12 of the bounding-box diagonal or it fails.
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
+#include <algorithm>
+#include <boost/iterator/counting_iterator.hpp>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <memory>
+#include <numeric>
+#include <optional>
+#include <qmotion/io/export.hpp>
+#include <qmotion/io/interpolate.hpp>
+#include <qmotion/io/occt.hpp>
+#include <qmotion/io/poses.hpp>
+#include <qmotion/kernel/interpolation.hpp>
+#include <qmotion/kernel/parametrization.hpp>
+#include <qmotion/kernel/spline_interpolation.hpp>
+#include <qmotion/sweep/profiles.hpp>
+#include <qmotion/sweep/surface.hpp>
+#include <qmotion/sweep/surface_eval.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+// CGAL before OpenCASCADE: OpenCASCADE's `Handle` macro breaks CGAL headers after it.
+// clang-format off
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/Search_traits_3.h>
+#include <CGAL/Search_traits_adapter.h>
+#include <CGAL/Orthogonal_k_neighbor_search.h>
+#include <CGAL/property_map.h>
+
+#include <BRepBuilderAPI_MakeEdge.hxx>
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_MakeWire.hxx>
+#include <BRepOffsetAPI_MakePipeShell.hxx>
+#include <BRepOffsetAPI_ThruSections.hxx>
+#include <BRepTools.hxx>
+#include <BRep_Tool.hxx>
+#include <GeomAPI_PointsToBSplineSurface.hxx>
+#include <GeomConvert.hxx>
+#include <GeomFill_LocationLaw.hxx>
+#include <GeomFill_Sweep.hxx>
+#include <GeomFill_UniformSection.hxx>
+#include <Geom_BSplineCurve.hxx>
+#include <Geom_BSplineSurface.hxx>
+#include <IFSelect_ReturnStatus.hxx>
+#include <IGESControl_Controller.hxx>
+#include <IGESControl_Writer.hxx>
+#include <STEPControl_Reader.hxx>
+#include <STEPControl_Writer.hxx>
+#include <Standard_Failure.hxx>
+#include <TColStd_Array1OfInteger.hxx>
+#include <TColStd_Array1OfReal.hxx>
+#include <TColStd_Array2OfReal.hxx>
+#include <TColgp_Array1OfPnt.hxx>
+#include <TColgp_Array2OfPnt.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Face.hxx>
+#include <TopoDS_Shape.hxx>
+#include <TopoDS_Wire.hxx>
+#include <gp_Mat.hxx>
+#include <gp_Vec.hxx>
+// clang-format on
+
+namespace {
+using namespace qmotion;
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+using M4 = Eigen::Matrix4d;
+using V3 = Eigen::Vector3d;
+
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0 : v[v.size() / 2];
+}
+
+// ---- the exact sweep: motion, profile, frame and its derivatives ----------------------
+
+/// The motion's rational frame x -> R(t) x + T(t) with its first two derivatives, from the
+/// homogeneous matrix spline M(t) = [[w, 0], [a, U]] (sweep::matrix_from_factors):
+/// H = M / w, H' = (M' - w' H) / w, H'' = (M'' - 2 w' H' - w'' H) / w.
+struct Frames {
+  kernel::BSpline<M4> M, dM, ddM;
+  double a = 0, b = 1;
+  std::vector<double> knots;
+  int degree = 0;
+
+  explicit Frames(const kernel::Motion<double>& m)
+      : M(sweep::matrix_from_factors(*m.factors)),
+        dM(kernel::derivative(M)),
+        ddM(kernel::derivative(dM)),
+        a(m.a()),
+        b(m.b()),
+        knots(M.knots()),
+        degree(M.degree()) {}
+
+  void at(double t, M4& H, M4* dH = nullptr, M4* ddH = nullptr) const {
+    const M4 m = kernel::evaluate(M, t);
+    const double w = m(0, 0);
+    H = m / w;
+    if (!dH) return;
+    const M4 m1 = kernel::evaluate(dM, t);
+    *dH = (m1 - m1(0, 0) * H) / w;
+    if (!ddH) return;
+    const M4 m2 = kernel::evaluate(ddM, t);
+    *ddH = (m2 - 2 * m1(0, 0) * *dH - m2(0, 0) * H) / w;
+  }
+
+  /// Interior breakpoints where the motion is less than C^k.
+  std::vector<double> breaks(int k) const {
+    std::vector<double> out;
+    for (std::size_t i = static_cast<std::size_t>(degree) + 1; i + degree + 1 < knots.size();) {
+      std::size_t j = i;
+      while (j < knots.size() && knots[j] == knots[i]) ++j;
+      const int mult = static_cast<int>(j - i);
+      if (degree - mult < k) out.push_back(knots[i]);
+      i = j;
+    }
+    return out;
+  }
+};
+
+struct Case {
+  std::string motion_name, profile_name;
+  kernel::Motion<double> motion;
+  sweep::NurbsCurve<double> profile;
+  std::shared_ptr<const Frames> frames;
+  sweep::NurbsSurface<double> exact;  // built once for measuring (u = t, v = profile)
+  double diagonal = 0;
+
+  Case(std::string mn, std::string pn, kernel::Motion<double> m, sweep::NurbsCurve<double> c)
+      : motion_name(std::move(mn)),
+        profile_name(std::move(pn)),
+        motion(std::move(m)),
+        profile(std::move(c)),
+        frames(std::make_shared<Frames>(motion)),
+        exact(sweep::to_nurbs(sweep::kinematic_surface(motion, profile))) {
+    V3 lo = V3::Constant(HUGE_VAL), hi = -lo;
+    for (int i = 0; i <= 400; ++i)
+      for (int j = 0; j <= 20; ++j) {
+        const V3 p = point(motion.a() + (motion.b() - motion.a()) * i / 400.0, j / 20.0);
+        lo = lo.cwiseMin(p);
+        hi = hi.cwiseMax(p);
+      }
+    diagonal = (hi - lo).norm();
+  }
+
+  /// The motion-applied profile M(t) c(s), straight from the dual quaternion curve (not
+  /// through any surface).
+  V3 point(double t, double s) const {
+    return kernel::apply_point(kernel::evaluate(motion, t), sweep::evaluate(profile, s));
+  }
+  int spans() const { return static_cast<int>(frames->breaks(frames->degree + 1).size()) + 1; }
+};
+
+// ---- OpenCASCADE geometry from ours ---------------------------------------------------
+
+Handle(Geom_BSplineCurve) to_occt(const sweep::NurbsCurve<double>& c) {
+  std::vector<double> k;
+  std::vector<int> mu;
+  io::knots_to_distinct(c.knots, k, mu);
+  const int n = static_cast<int>(c.points.size());
+  TColgp_Array1OfPnt P(1, n);
+  TColStd_Array1OfReal W(1, n), K(1, static_cast<int>(k.size()));
+  TColStd_Array1OfInteger Mu(1, static_cast<int>(k.size()));
+  for (int i = 0; i < n; ++i) {
+    const V3& p = c.points[static_cast<std::size_t>(i)];
+    P.SetValue(i + 1, gp_Pnt(p.x(), p.y(), p.z()));
+    W.SetValue(i + 1, c.weights[static_cast<std::size_t>(i)]);
+  }
+  for (std::size_t i = 0; i < k.size(); ++i) {
+    K.SetValue(static_cast<int>(i) + 1, k[i]);
+    Mu.SetValue(static_cast<int>(i) + 1, mu[i]);
+  }
+  return new Geom_BSplineCurve(P, W, K, Mu, c.degree);
+}
+
+/// The profile moved by the motion at t (a rigid map of the poles; weights unchanged).
+sweep::NurbsCurve<double> placed(const Case& c, double t) {
+  M4 H;
+  c.frames->at(t, H);
+  sweep::NurbsCurve<double> out = c.profile;
+  for (auto& p : out.points) p = H.block<3, 3>(1, 1) * p + H.block<3, 1>(1, 0);
+  return out;
+}
+
+TopoDS_Wire wire_of(const Handle(Geom_Curve) & c) {
+  return BRepBuilderAPI_MakeWire(BRepBuilderAPI_MakeEdge(c)).Wire();
+}
+
+// ---- route 2's location law: our motion, exactly ----------------------------------------
+
+gp_Mat to_gp_mat(const Eigen::Matrix3d& m) {
+  return gp_Mat(m(0, 0), m(0, 1), m(0, 2), m(1, 0), m(1, 1), m(1, 2), m(2, 0), m(2, 1), m(2, 2));
+}
+gp_Vec to_gp_vec(const V3& v) { return gp_Vec(v.x(), v.y(), v.z()); }
+
+/// The section is placed at M * P + V with M = R(t) and V = T(t) of our motion: the
+/// location law an OpenCASCADE user writes to sweep along a rigid motion they can evaluate.
+class MotionLaw : public GeomFill_LocationLaw {
+ public:
+  explicit MotionLaw(std::shared_ptr<const Frames> f)
+      : f_(std::move(f)), first_(f_->a), last_(f_->b) {}
+
+  void SetCurve(const Handle(Adaptor3d_Curve) &) override {}
+  const Handle(Adaptor3d_Curve) & GetCurve() const override { return curve_; }
+  void SetTrsf(const gp_Mat& t) override { trsf_ = t; }
+  Handle(GeomFill_LocationLaw) Copy() const override {
+    Handle(MotionLaw) c = new MotionLaw(f_);
+    c->trsf_ = trsf_;
+    c->first_ = first_;
+    c->last_ = last_;
+    return c;
+  }
+  Standard_Boolean D0(const Standard_Real t, gp_Mat& M, gp_Vec& V) override {
+    M4 H;
+    f_->at(t, H);
+    M = to_gp_mat(H.block<3, 3>(1, 1)) * trsf_;
+    V = to_gp_vec(H.block<3, 1>(1, 0));
+    return Standard_True;
+  }
+  Standard_Boolean D0(const Standard_Real t, gp_Mat& M, gp_Vec& V, TColgp_Array1OfPnt2d&) override {
+    return D0(t, M, V);
+  }
+  Standard_Boolean D1(const Standard_Real t, gp_Mat& M, gp_Vec& V, gp_Mat& DM, gp_Vec& DV,
+                      TColgp_Array1OfPnt2d&, TColgp_Array1OfVec2d&) override {
+    M4 H, dH;
+    f_->at(t, H, &dH);
+    M = to_gp_mat(H.block<3, 3>(1, 1)) * trsf_;
+    V = to_gp_vec(H.block<3, 1>(1, 0));
+    DM = to_gp_mat(dH.block<3, 3>(1, 1)) * trsf_;
+    DV = to_gp_vec(dH.block<3, 1>(1, 0));
+    return Standard_True;
+  }
+  Standard_Boolean D2(const Standard_Real t, gp_Mat& M, gp_Vec& V, gp_Mat& DM, gp_Vec& DV,
+                      gp_Mat& D2M, gp_Vec& D2V, TColgp_Array1OfPnt2d&, TColgp_Array1OfVec2d&,
+                      TColgp_Array1OfVec2d&) override {
+    M4 H, dH, ddH;
+    f_->at(t, H, &dH, &ddH);
+    M = to_gp_mat(H.block<3, 3>(1, 1)) * trsf_;
+    V = to_gp_vec(H.block<3, 1>(1, 0));
+    DM = to_gp_mat(dH.block<3, 3>(1, 1)) * trsf_;
+    DV = to_gp_vec(dH.block<3, 1>(1, 0));
+    D2M = to_gp_mat(ddH.block<3, 3>(1, 1)) * trsf_;
+    D2V = to_gp_vec(ddH.block<3, 1>(1, 0));
+    return Standard_True;
+  }
+  Standard_Integer NbIntervals(const GeomAbs_Shape S) const override {
+    return static_cast<Standard_Integer>(inside(S).size()) + 1;
+  }
+  void Intervals(TColStd_Array1OfReal& T, const GeomAbs_Shape S) const override {
+    const auto b = inside(S);
+    T.SetValue(T.Lower(), first_);
+    for (std::size_t i = 0; i < b.size(); ++i)
+      T.SetValue(T.Lower() + static_cast<int>(i) + 1, b[i]);
+    T.SetValue(T.Upper(), last_);
+  }
+  void SetInterval(const Standard_Real a, const Standard_Real b) override {
+    first_ = a;
+    last_ = b;
+  }
+  void GetInterval(Standard_Real& a, Standard_Real& b) const override {
+    a = first_;
+    b = last_;
+  }
+  void GetDomain(Standard_Real& a, Standard_Real& b) const override {
+    a = f_->a;
+    b = f_->b;
+  }
+  Standard_Real GetMaximalNorm() override {
+    double n = 0;
+    for (int i = 0; i <= 200; ++i) {
+      M4 H;
+      f_->at(f_->a + (f_->b - f_->a) * i / 200.0, H);
+      n = std::max(n, H.block<3, 1>(1, 0).norm());
+    }
+    return n;
+  }
+  void GetAverageLaw(gp_Mat& AM, gp_Vec& AV) override {
+    M4 sum = M4::Zero();
+    for (int i = 0; i <= 100; ++i) {
+      M4 H;
+      f_->at(f_->a + (f_->b - f_->a) * i / 100.0, H);
+      sum += H / 101.0;
+    }
+    AM = to_gp_mat(sum.block<3, 3>(1, 1));
+    AV = to_gp_vec(sum.block<3, 1>(1, 0));
+  }
+
+ private:
+  std::vector<double> inside(GeomAbs_Shape S) const {
+    const int k = S == GeomAbs_C0 ? 0 : S == GeomAbs_C1 ? 1 : S == GeomAbs_C2 ? 2 : 3;
+    std::vector<double> out;
+    for (double x : f_->breaks(k))
+      if (x > first_ && x < last_) out.push_back(x);
+    return out;
+  }
+  std::shared_ptr<const Frames> f_;
+  Handle(Adaptor3d_Curve) curve_;
+  gp_Mat trsf_{1, 0, 0, 0, 1, 0, 0, 0, 1};
+  double first_, last_;
+};
+
+// ---- deviation: dense samples both ways, nearest seeds from a k-d tree, Gauss-Newton -----
+
+using Kernel = CGAL::Simple_cartesian<double>;
+using Pt = Kernel::Point_3;
+using TreeTraits = CGAL::Search_traits_adapter<std::size_t, CGAL::Pointer_property_map<Pt>::type,
+                                               CGAL::Search_traits_3<Kernel>>;
+using Search = CGAL::Orthogonal_k_neighbor_search<TreeTraits>;
+
+/// Dense samples of a surface with their (face, u, v), and a k-d tree over them.
+struct Samples {
+  mutable std::vector<Pt> pts;  // mutable: CGAL's distance adapter takes a non-const map
+  std::vector<std::array<double, 3>> where;  // face, u, v
+  std::unique_ptr<Search::Tree> tree;
+
+  void add(int face, double u, double v, const V3& p) {
+    pts.emplace_back(p.x(), p.y(), p.z());
+    where.push_back({double(face), u, v});
+  }
+  void build() {
+    tree = std::make_unique<Search::Tree>(
+        boost::counting_iterator<std::size_t>(0), boost::counting_iterator<std::size_t>(pts.size()),
+        Search::Tree::Splitter(), TreeTraits(CGAL::make_property_map(pts)));
+    tree->build();  // now, not lazily inside a (concurrent) query
+  }
+  std::vector<std::size_t> nearest(const V3& x, unsigned k) const {
+    Search::Distance d(CGAL::make_property_map(pts));
+    Search s(*tree, Pt(x.x(), x.y(), x.z()), k, 0, true, d);
+    std::vector<std::size_t> out;
+    for (auto it = s.begin(); it != s.end(); ++it) out.push_back(it->first);
+    return out;
+  }
+};
+
+struct OcctFace {
+  Handle(Geom_Surface) s;
+  double u0, u1, v0, v1;
+};
+
+/// Distance from x to the face near (u, v): Gauss-Newton on |S - x|^2 in the UV box.
+double face_distance(const OcctFace& f, const V3& x, double u, double v) {
+  double best = HUGE_VAL;
+  for (int it = 0; it <= 12; ++it) {
+    gp_Pnt P;
+    gp_Vec Su, Sv;
+    f.s->D1(u, v, P, Su, Sv);
+    const V3 S(P.X(), P.Y(), P.Z()), su(Su.X(), Su.Y(), Su.Z()), sv(Sv.X(), Sv.Y(), Sv.Z());
+    const V3 r = x - S;
+    best = std::min(best, r.norm());
+    Eigen::Matrix2d J;
+    J << su.dot(su), su.dot(sv), su.dot(sv), sv.dot(sv);
+    if (!(J.determinant() > 1e-30 * J.squaredNorm())) break;
+    const Eigen::Vector2d d = J.ldlt().solve(Eigen::Vector2d(su.dot(r), sv.dot(r)));
+    u = std::clamp(u + d(0), f.u0, f.u1);
+    v = std::clamp(v + d(1), f.v0, f.v1);
+    if (d.norm() < 1e-16) break;
+  }
+  return best;
+}
+
+std::vector<OcctFace> faces_of(const TopoDS_Shape& shape) {
+  std::vector<OcctFace> out;
+  for (TopExp_Explorer e(shape, TopAbs_FACE); e.More(); e.Next()) {
+    const TopoDS_Face& f = TopoDS::Face(e.Current());
+    OcctFace o;
+    o.s = BRep_Tool::Surface(f);
+    BRepTools::UVBounds(f, o.u0, o.u1, o.v0, o.v1);
+    out.push_back(o);
+  }
+  return out;
+}
+
+int sample_count(int spans) { return std::clamp(8 * spans + 24, 24, 1600); }
+
+/// Sample counts along u and v of a surface over [u0, u1] x [v0, v1] so that neighbouring
+/// samples are at most h apart (the longest of three iso-curves in each direction, measured
+/// as polylines of `probe` points), at least 16 and at most 4000.
+std::pair<int, int> counts_for(const std::function<V3(double, double)>& S, double u0, double u1,
+                               double v0, double v1, double h, int probe) {
+  auto longest = [&](bool along_u) {
+    double L = 0;
+    for (double f : {0.0, 0.5, 1.0}) {
+      double l = 0;
+      V3 prev;
+      for (int i = 0; i <= probe; ++i) {
+        const double a = double(i) / probe;
+        const V3 p = along_u ? S(u0 + (u1 - u0) * a, v0 + (v1 - v0) * f)
+                             : S(u0 + (u1 - u0) * f, v0 + (v1 - v0) * a);
+        if (i) l += (p - prev).norm();
+        prev = p;
+      }
+      L = std::max(L, l);
+    }
+    return std::clamp(static_cast<int>(L / h) + 1, 16, 4000);
+  };
+  return {longest(true), longest(false)};
+}
+
+/// The Hausdorff distance between the shape's faces and the exact surface, both ways: every
+/// sample of one (at most 1/resolution of the diagonal apart) against the other, from the
+/// best of its four nearest samples there (a k-d tree), by Gauss-Newton. Seeds that close keep
+/// the foot point on the right sheet where the surface folds over itself.
+double deviation(const Case& c, const std::vector<OcctFace>& faces, int resolution) {
+  const sweep::SurfaceEvaluator E(c.exact);
+  const double h = c.diagonal / resolution;
+  const int probe = 8 * c.spans() + 256;
+  constexpr unsigned kSeeds = 4;
+  Samples ex;
+  const auto [nu, nv] = counts_for([&](double u, double v) { return E(u, v); }, E.u0(), E.u1(),
+                                   E.v0(), E.v1(), h, probe);
+  for (int i = 0; i <= nu; ++i)
+    for (int j = 0; j <= nv; ++j) {
+      const double u = E.u0() + (E.u1() - E.u0()) * i / nu, v = E.v0() + (E.v1() - E.v0()) * j / nv;
+      ex.add(0, u, v, E(u, v));
+    }
+  ex.build();
+  Samples rt;
+  for (std::size_t k = 0; k < faces.size(); ++k) {
+    const auto& f = faces[k];
+    const auto value = [&](double u, double v) {
+      const gp_Pnt p = f.s->Value(u, v);
+      return V3(p.X(), p.Y(), p.Z());
+    };
+    const auto [n1, n2] = counts_for(value, f.u0, f.u1, f.v0, f.v1, h, probe);
+    for (int i = 0; i <= n1; ++i)
+      for (int j = 0; j <= n2; ++j) {
+        const double u = f.u0 + (f.u1 - f.u0) * i / n1, v = f.v0 + (f.v1 - f.v0) * j / n2;
+        rt.add(static_cast<int>(k), u, v, value(u, v));
+      }
+  }
+  rt.build();
+  // Route -> exact on every core (our evaluator and the built tree are read-only).
+  double dev = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, rt.pts.size()), 0.0,
+      [&](const tbb::blocked_range<std::size_t>& r, double m) {
+        for (std::size_t i = r.begin(); i < r.end(); ++i) {
+          const V3 x(rt.pts[i].x(), rt.pts[i].y(), rt.pts[i].z());
+          double d = HUGE_VAL;
+          for (std::size_t s : ex.nearest(x, kSeeds))
+            d = std::min(d, E.distance(x, ex.where[s][1], ex.where[s][2], 12));
+          m = std::max(m, d);
+        }
+        return m;
+      },
+      [](double a, double b) { return std::max(a, b); });
+  for (std::size_t i = 0; i < ex.pts.size(); ++i) {  // exact -> route
+    const V3 x(ex.pts[i].x(), ex.pts[i].y(), ex.pts[i].z());
+    double d = HUGE_VAL;
+    for (std::size_t s : rt.nearest(x, kSeeds)) {
+      const auto& w = rt.where[s];
+      d = std::min(d, face_distance(faces[static_cast<std::size_t>(w[0])], x, w[1], w[2]));
+    }
+    dev = std::max(dev, d);
+  }
+  return dev;
+}
+
+/// The exact route's deviation at equal parameters: the surface read back at (t, s) against
+/// M(t) c(s) from the dual quaternion curve (an upper bound of the geometric distance).
+double parametric_deviation(const Case& c, const OcctFace& f) {
+  double dev = 0;
+  const int nu = sample_count(c.spans()), nv = 64;
+  for (int i = 0; i <= nu; ++i)
+    for (int j = 0; j <= nv; ++j) {
+      const double t = c.motion.a() + (c.motion.b() - c.motion.a()) * i / nu, s = double(j) / nv;
+      const gp_Pnt p = f.s->Value(t, s);
+      dev = std::max(dev, (V3(p.X(), p.Y(), p.Z()) - c.point(t, s)).norm());
+    }
+  return dev;
+}
+
+std::string fmt(double x, int prec = 3) {
+  std::ostringstream o;
+  o.precision(prec);
+  o << x;
+  return o.str();
+}
+
+// ---- one route, measured ------------------------------------------------------------------
+
+struct Row {
+  std::string motion, profile, route, settings;
+  bool ok = false;
+  std::string why;
+  double build_ms = 0, write_ms = 0, read_ms = 0, dev = 0, rel = 0;
+  long poles = 0;
+  std::string degrees;
+  std::uintmax_t step_bytes = 0;
+};
+
+void describe(const TopoDS_Shape& shape, Row& r) {
+  int pu = 0, pv = 0;
+  for (const auto& f : faces_of(shape)) {
+    Handle(Geom_BSplineSurface) bs = Handle(Geom_BSplineSurface)::DownCast(f.s);
+    if (bs.IsNull()) {
+      try {
+        bs = GeomConvert::SurfaceToBSplineSurface(f.s);
+      } catch (const Standard_Failure&) {
+        continue;
+      }
+    }
+    r.poles += static_cast<long>(bs->NbUPoles()) * bs->NbVPoles();
+    pu = std::max(pu, bs->UDegree());
+    pv = std::max(pv, bs->VDegree());
+  }
+  r.degrees = std::to_string(pu) + "×" + std::to_string(pv);
+}
+
+std::string temp_step(const std::string& tag) {
+  return (fs::temp_directory_path() / ("occt_peers_" + tag + ".step")).string();
+}
+
+/// Writes the shape with OpenCASCADE's STEP writer alone; the time of Transfer + Write.
+double occt_write_step(const TopoDS_Shape& shape, const std::string& path) {
+  const auto t0 = Clock::now();
+  STEPControl_Writer w;
+  if (w.Transfer(shape, STEPControl_AsIs) != IFSelect_RetDone ||
+      w.Write(path.c_str()) != IFSelect_RetDone)
+    throw std::runtime_error("STEP writer failed");
+  return ms_since(t0);
+}
+
+TopoDS_Shape read_step(const std::string& path, double& ms) {
+  const auto t0 = Clock::now();
+  STEPControl_Reader r;
+  if (r.ReadFile(path.c_str()) != IFSelect_RetDone) throw std::runtime_error("STEP reader failed");
+  r.TransferRoots();
+  TopoDS_Shape s = r.OneShape();
+  ms = ms_since(t0);
+  return s;
+}
+
+/// Runs build() `repeats` times (the median is its time), then writes the shape to STEP,
+/// reads it back and measures the deviation of what was read.
+Row measure(const Case& c, const std::string& route, const std::string& settings, int repeats,
+            int resolution, const std::function<TopoDS_Shape()>& build) {
+  Row r;
+  r.motion = c.motion_name;
+  r.profile = c.profile_name;
+  r.route = route;
+  r.settings = settings;
+  try {
+    std::vector<double> times;
+    TopoDS_Shape shape;
+    for (int i = 0; i < repeats; ++i) {
+      const auto t0 = Clock::now();
+      shape = build();
+      times.push_back(ms_since(t0));
+      if (times.back() > 2000) break;  // slow routes: one run says enough
+    }
+    r.build_ms = median(times);
+    describe(shape, r);
+    const std::string path = temp_step("peer");
+    r.write_ms = occt_write_step(shape, path);
+    r.step_bytes = fs::file_size(path);
+    const auto faces = faces_of(read_step(path, r.read_ms));
+    fs::remove(path);
+    if (faces.empty()) throw std::runtime_error("no face read back");
+    r.dev = deviation(c, faces, resolution);
+    r.rel = r.dev / c.diagonal;
+    r.ok = true;
+  } catch (const Standard_Failure& e) {
+    r.why =
+        std::string("OpenCASCADE: ") + (e.GetMessageString() ? e.GetMessageString() : "failure");
+  } catch (const std::exception& e) {
+    r.why = e.what();
+  }
+  std::cerr << "  " << r.route << " [" << r.settings << "]: "
+            << (r.ok ? fmt(r.build_ms) + " ms, deviation " + fmt(r.dev, 2) : "failed: " + r.why)
+            << "\n";
+  return r;
+}
+
+struct WriteTimes {  // route 1's export against OpenCASCADE's writers alone, same face
+  double step_ours = 0, step_occt = 0, iges_ours = 0, iges_occt = 0;
+};
+
+Handle(Geom_BSplineSurface) to_occt(const sweep::NurbsSurface<double>& s) {
+  std::vector<double> ku, kv;
+  std::vector<int> mu, mv;
+  io::knots_to_distinct(s.knots_u, ku, mu);
+  io::knots_to_distinct(s.knots_v, kv, mv);
+  const int nu = static_cast<int>(s.points.size()), nv = static_cast<int>(s.points[0].size());
+  TColgp_Array2OfPnt P(1, nu, 1, nv);
+  TColStd_Array2OfReal W(1, nu, 1, nv);
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      const V3& p = s.points[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
+      P.SetValue(i + 1, j + 1, gp_Pnt(p.x(), p.y(), p.z()));
+      W.SetValue(i + 1, j + 1, s.weights[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)]);
+    }
+  auto arr = [](const std::vector<double>& k, const std::vector<int>& m, TColStd_Array1OfReal& K,
+                TColStd_Array1OfInteger& M) {
+    for (std::size_t i = 0; i < k.size(); ++i) {
+      K.SetValue(static_cast<int>(i) + 1, k[i]);
+      M.SetValue(static_cast<int>(i) + 1, m[i]);
+    }
+  };
+  TColStd_Array1OfReal KU(1, static_cast<int>(ku.size())), KV(1, static_cast<int>(kv.size()));
+  TColStd_Array1OfInteger MU(1, static_cast<int>(mu.size())), MV(1, static_cast<int>(mv.size()));
+  arr(ku, mu, KU, MU);
+  arr(kv, mv, KV, MV);
+  return new Geom_BSplineSurface(P, W, KU, KV, MU, MV, s.degree_u, s.degree_v);
+}
+
+/// Route 1: qmotion builds the exact surface and writes it with io::write_step. Also times
+/// io::write_step / write_iges against OpenCASCADE's writers alone on the same face.
+Row exact_route(const Case& c, int repeats, WriteTimes& wt) {
+  Row r;
+  r.motion = c.motion_name;
+  r.profile = c.profile_name;
+  r.route = "1 qmotion exact";
+  r.settings = "—";
+  try {
+    std::vector<double> times;
+    sweep::NurbsSurface<double> s;
+    for (int i = 0; i < repeats; ++i) {
+      const auto t0 = Clock::now();
+      s = sweep::to_nurbs(sweep::kinematic_surface(c.motion, c.profile));
+      times.push_back(ms_since(t0));
+    }
+    r.build_ms = median(times);
+    r.poles = static_cast<long>(s.points.size() * s.points.front().size());
+    r.degrees = std::to_string(s.degree_u) + "×" + std::to_string(s.degree_v);
+    const std::string path = temp_step("exact");
+    io::write_step(path, s, {});
+    r.step_bytes = fs::file_size(path);
+    const auto faces = faces_of(read_step(path, r.read_ms));
+    if (faces.size() != 1) throw std::runtime_error("expected one face back");
+    r.dev = parametric_deviation(c, faces.front());
+    r.rel = r.dev / c.diagonal;
+    r.ok = true;
+    // Writing: ours against OpenCASCADE's writers alone on the same face (built once,
+    // outside the timing), each warmed up once, then the median of at least three.
+    const TopoDS_Face face = BRepBuilderAPI_MakeFace(to_occt(s), 1e-7).Face();
+    const std::string igs = (fs::temp_directory_path() / "occt_peers_exact.igs").string();
+    const auto timed = [&](const std::function<void()>& f) {
+      f();
+      std::vector<double> t;
+      for (int i = 0; i < std::max(3, repeats); ++i) {
+        const auto t0 = Clock::now();
+        f();
+        t.push_back(ms_since(t0));
+      }
+      return median(t);
+    };
+    r.write_ms = wt.step_ours = timed([&] { io::write_step(path, s, {}); });
+    wt.step_occt = timed([&] { occt_write_step(face, path); });
+    wt.iges_ours = timed([&] { io::write_iges(igs, s, {}); });
+    wt.iges_occt = timed([&] {
+      IGESControl_Controller::Init();
+      IGESControl_Writer w("MM", 1);
+      w.AddShape(face);
+      w.ComputeModel();
+      if (!w.Write(igs.c_str())) throw std::runtime_error("IGES writer failed");
+    });
+    fs::remove(path);
+    fs::remove(igs);
+  } catch (const Standard_Failure& e) {
+    r.why =
+        std::string("OpenCASCADE: ") + (e.GetMessageString() ? e.GetMessageString() : "failure");
+  } catch (const std::exception& e) {
+    r.why = e.what();
+  }
+  std::cerr << "  " << r.route << " [" << r.settings << "]: "
+            << (r.ok ? fmt(r.build_ms) + " ms, deviation " + fmt(r.dev, 2) : "failed: " + r.why)
+            << "\n";
+  return r;
+}
+
+/// Route 1 under `--max-degree D --tol T`: io::sweep_nurbs approximates on a common knot
+/// vector (what a user whose CAD system caps the degree gets from qmotion).
+void capped_routes(const Case& c, bool smoke, int repeats, int resolution, std::vector<Row>& rows) {
+  if (smoke) return;
+  for (const int deg : {7, 5})
+    for (const double tol : {1e-5, 1e-7}) {
+      if (c.exact.degree_u <= deg) continue;
+
+      std::ostringstream set;
+      set << "--max-degree " << deg << " --tol " << tol;
+      rows.push_back(measure(c, "1 qmotion, degree capped", set.str(), repeats, resolution, [&] {
+        io::ExportOptions o;
+        o.max_degree = deg;
+        o.tol = tol;
+        const auto s = io::sweep_nurbs(c.motion, sweep::single_edge(c.profile), o);
+        return TopoDS_Shape(BRepBuilderAPI_MakeFace(to_occt(s.front()), 1e-7).Face());
+      }));
+    }
+}
+
+// ---- the peers ------------------------------------------------------------------------------
+
+void peers(const Case& c, bool smoke, int repeats, int resolution, std::vector<Row>& rows) {
+  const std::vector<double> tols =
+      smoke ? std::vector<double>{1e-3} : std::vector<double>{1e-3, 1e-5, 1e-7};
+  const std::vector<int> degs = smoke ? std::vector<int>{10} : std::vector<int>{14, 10, 7, 5};
+  const Handle(Geom_BSplineCurve) prof = to_occt(c.profile);
+  const int segmax = std::max(30, 8 * c.spans() + 30);
+  for (double tol : tols)
+    for (int deg : degs) {
+      std::ostringstream set;
+      set << "Tol3d " << tol << ", MaxDegree " << deg;
+      rows.push_back(measure(c, "2 GeomFill_Sweep, exact law", set.str(), repeats, resolution, [&] {
+        // The law's matrix splines are built inside the timing: the exact route builds its
+        // own from the motion too.
+        Handle(GeomFill_LocationLaw) law = new MotionLaw(std::make_shared<const Frames>(c.motion));
+        Handle(GeomFill_SectionLaw) sec =
+            new GeomFill_UniformSection(prof, prof->FirstParameter(), prof->LastParameter());
+        GeomFill_Sweep sw(law, Standard_False);
+        sw.SetTolerance(tol, tol, 1e-5, 1e-2);
+        sw.Build(sec, GeomFill_Location, GeomAbs_C2, deg, segmax);
+        if (!sw.IsDone()) throw std::runtime_error("not done");
+        return TopoDS_Shape(BRepBuilderAPI_MakeFace(sw.Surface(), 1e-7).Face());
+      }));
+    }
+  const TopoDS_Wire spine = wire_of(to_occt(sweep::trajectory_curve(c.motion, V3(0, 0, 0))));
+  double size = 0;
+  for (const auto& p : c.profile.points) size = std::max(size, p.norm());
+  const TopoDS_Wire aux =
+      wire_of(to_occt(sweep::trajectory_curve(c.motion, V3(0, 0, std::max(size, 1.0)))));
+  const TopoDS_Wire start = wire_of(to_occt(placed(c, c.motion.a())));
+  for (int mode = 0; mode < 2; ++mode)
+    rows.push_back(
+        measure(c, "3 MakePipeShell on the origin's path",
+                mode ? "auxiliary spine: path of (0, 0, r)" : "default (corrected Frenet)", repeats,
+                resolution, [&] {
+                  BRepOffsetAPI_MakePipeShell ps(spine);
+                  if (mode) ps.SetMode(aux, Standard_True);
+                  ps.Add(start, Standard_False, Standard_False);
+                  ps.Build();
+                  if (!ps.IsDone()) throw std::runtime_error("not done");
+                  return ps.Shape();
+                }));
+  const int nu = std::min(24 * c.spans() + 64, 400), nv = 48;
+  TColgp_Array2OfPnt grid(1, nu, 1, nv);
+  for (int i = 1; i <= nu; ++i)
+    for (int j = 1; j <= nv; ++j) {
+      const V3 p = c.point(c.motion.a() + (c.motion.b() - c.motion.a()) * (i - 1) / (nu - 1),
+                           (j - 1) / double(nv - 1));
+      grid.SetValue(i, j, gp_Pnt(p.x(), p.y(), p.z()));
+    }
+  for (double tol : tols) {
+    std::ostringstream set;
+    set << nu << "×" << nv << " points, Tol3d " << tol << ", degree 3–8, C2";
+    rows.push_back(measure(c, "4 PointsToBSplineSurface", set.str(), repeats, resolution, [&] {
+      GeomAPI_PointsToBSplineSurface fit(grid, 3, 8, GeomAbs_C2, tol);
+      if (!fit.IsDone()) throw std::runtime_error("not done");
+      return TopoDS_Shape(BRepBuilderAPI_MakeFace(fit.Surface(), 1e-7).Face());
+    }));
+  }
+  const int sections = std::clamp(4 * c.spans() + 1, 9, 101);
+  std::vector<TopoDS_Wire> wires;
+  for (int i = 0; i < sections; ++i)
+    wires.push_back(wire_of(
+        to_occt(placed(c, c.motion.a() + (c.motion.b() - c.motion.a()) * i / (sections - 1)))));
+  rows.push_back(measure(c, "5 ThruSections", std::to_string(sections) + " exact sections", repeats,
+                         resolution, [&] {
+                           BRepOffsetAPI_ThruSections loft(Standard_False, Standard_False, 1e-6);
+                           loft.CheckCompatibility(Standard_False);
+                           for (const auto& w : wires) loft.AddWire(w);
+                           loft.Build();
+                           if (!loft.IsDone()) throw std::runtime_error("not done");
+                           return loft.Shape();
+                         }));
+}
+
+// ---- the cases ------------------------------------------------------------------------------
+
+kernel::Pose<double> pose(double angle_deg, const V3& axis, const V3& position) {
+  const double h = angle_deg * M_PI / 360;
+  const V3 a = axis.normalized() * std::sin(h);
+  return kernel::Pose<double>{std::nullopt, position,
+                              kernel::Quaternion<double>(std::cos(h), a.x(), a.y(), a.z())};
+}
+
+kernel::Motion<double> demo_motion(const std::string& data) {
+  io::InterpolateOptions o;
+  o.form = "bezier";
+  return io::interpolate(io::read_poses(data + "/poses/five_positions.json"), o).motion;
+}
+
+/// Four poses turning 140 degrees in all about a tilted axis: elliptic (cubic) rotation,
+/// TR with a cubic translation.
+kernel::Motion<double> turn140_motion() {
+  std::vector<kernel::Pose<double>> P;
+  for (int i = 0; i <= 3; ++i)
+    P.push_back(
+        pose(140.0 * i / 3, V3(0.3, 0.2, 1), V3(40 * i, 25 * std::sin(i), 10 * i * i / 3.0)));
+  return kernel::interpolate_bezier(P, kernel::parametrize(P, kernel::ParamRule::chordal), {});
+}
+
+/// 200 poses along a helix (radius 50 mm, 3 turns), turning with the tangent and rolling:
+/// the default cubic B-spline motion, chordal parameters.
+kernel::Motion<double> helix_motion(int n) {
+  std::vector<kernel::Pose<double>> P;
+  for (int i = 0; i < n; ++i) {
+    const double a = 6 * M_PI * i / (n - 1);
+    P.push_back(pose(a * 180 / M_PI + 20 * std::sin(3 * a), V3(0.1 * std::cos(a), 0.1, 1),
+                     V3(50 * std::cos(a), 50 * std::sin(a), 8 * a)));
+  }
+  return kernel::interpolate_bspline(P, kernel::parametrize(P, kernel::ParamRule::chordal),
+                                     kernel::SplineOptions{});
+}
+
+sweep::NurbsCurve<double> cubic_profile() {  // open cubic NURBS, uneven weights, 6 poles
+  return sweep::NurbsCurve<double>{
+      3,
+      {0, 0, 0, 0, 0.3, 0.6, 1, 1, 1, 1},
+      {{-8, 0, 0}, {-5, 0, 6}, {-1, 2, 3}, {2, -1, 7}, {5, 0, 2}, {8, 0, 5}},
+      {1, 0.8, 1.3, 0.7, 1.1, 1}};
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  bool smoke = false;
+  int repeats = 3, resolution = 0;
+  std::string out;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--smoke") {
+      smoke = true;
+    } else if (a == "--repeats" && i + 1 < argc) {
+      repeats = std::max(1, std::atoi(argv[++i]));
+    } else if (a == "--resolution" && i + 1 < argc) {
+      resolution = std::max(10, std::atoi(argv[++i]));
+    } else if (a == "--out" && i + 1 < argc) {
+      out = argv[++i];
+    } else {
+      std::cerr << "usage: occt_peers [--smoke] [--repeats N] [--resolution N] [--out FILE]\n";
+      return 2;
+    }
+  }
+  if (smoke) {
+    repeats = 1;
+    if (!resolution) resolution = 60;
+  }
+  if (!resolution) resolution = 300;
+  const std::string data = QMOTION_TEST_DATA;
+  std::vector<std::pair<std::string, kernel::Motion<double>>> motions;
+  motions.emplace_back("demo (5 poses)", demo_motion(data));
+  if (!smoke) {
+    motions.emplace_back("cubic × cubic, 140°", turn140_motion());
+    motions.emplace_back("B-spline, 200 poses", helix_motion(200));
+  }
+  std::vector<std::pair<std::string, sweep::NurbsCurve<double>>> profiles;
+  profiles.emplace_back("segment", sweep::segment(V3(-10, 0, 0), V3(10, 0, 5)));
+  if (!smoke) {
+    profiles.emplace_back("half-circle", sweep::arc(10, 0, 180));
+    profiles.emplace_back("cubic NURBS", cubic_profile());
+  }
+  std::vector<Row> rows;
+  std::vector<std::pair<std::string, WriteTimes>> writes;
+  bool exact_ok = true;
+  for (const auto& [mn, m] : motions)
+    for (const auto& [pn, p] : profiles) {
+      const Case c(mn, pn, m, p);
+      std::cerr << mn << " / " << pn << " ...\n";
+      WriteTimes wt;
+      rows.push_back(exact_route(c, repeats, wt));
+      const Row& ex = rows.back();
+      if (!ex.ok || !(ex.rel <= 1e-12)) exact_ok = false;
+      writes.emplace_back(mn + " / " + pn, wt);
+      capped_routes(c, smoke, repeats, resolution, rows);
+      peers(c, smoke, repeats, resolution, rows);
+    }
+  std::ostringstream md;
+  md << "| motion | profile | route | settings | result | build (ms) | poles | degrees | STEP (kB) "
+        "| write (ms) | read (ms) | max deviation (mm) | / diagonal |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const auto& r : rows) {
+    md << "| " << r.motion << " | " << r.profile << " | " << r.route << " | " << r.settings
+       << " | ";
+    if (!r.ok) {
+      md << "failed: " << r.why << " | | | | | | | | |\n";
+      continue;
+    }
+    md << "ok | " << fmt(r.build_ms) << " | " << r.poles << " | " << r.degrees << " | "
+       << fmt(double(r.step_bytes) / 1000.0) << " | " << fmt(r.write_ms) << " | " << fmt(r.read_ms)
+       << " | " << fmt(r.dev, 2) << " | " << fmt(r.rel, 2) << " |\n";
+  }
+  md << "\n| exact surface of | io::write_step (ms) | STEPControl_Writer alone (ms) | ratio "
+        "| io::write_iges (ms) | IGESControl_Writer alone (ms) | ratio |\n"
+        "|---|---|---|---|---|---|---|\n";
+  for (const auto& [name, w] : writes)
+    md << "| " << name << " | " << fmt(w.step_ours) << " | " << fmt(w.step_occt) << " | "
+       << fmt(w.step_ours / w.step_occt) << " | " << fmt(w.iges_ours) << " | " << fmt(w.iges_occt)
+       << " | " << fmt(w.iges_ours / w.iges_occt) << " |\n";
+  std::cout << md.str();
+  if (!out.empty()) std::ofstream(out) << md.str();
+  if (!exact_ok) {
+    std::cerr << "occt_peers: the exact route failed or deviates by more than 1e-12 of the "
+                 "diagonal\n";
+    return 1;
+  }
+  return 0;
+}
