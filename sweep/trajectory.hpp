@@ -114,31 +114,32 @@ kernel::BSpline<Eigen::Matrix<Scalar, 4, 4>> matrix_from_factors(const MotionFac
   const auto times = [](const M3& u, const V3& v) { return V3(u * v); };
   std::vector<Bernstein<M4>> pieces;
   pieces.reserve(rot.size());
-  int d = 0;
+  // Degree: 2k for |Q_rot|^2 and U; the translation column 2k + l (TR), 2k + max(l1, l2)
+  // (TRT), l (minimal order).
+  const int k2 = 2 * f.rotation.degree();
+  int d = std::max(
+      k2, f.translation.degree() + (method == kernel::TranslationMethod::minimal ? 0 : k2));
+  if (method == kernel::TranslationMethod::trt) d = std::max(d, k2 + f.translation2->degree());
   for (std::size_t k = 0; k < rot.size(); ++k) {
     const Bernstein<M4> nu = kernel::product(rot[k], rot[k], polar);
-    std::vector<Scalar> n2c;
-    std::vector<M3> uc;
-    for (const auto& m : nu.coeffs()) {
-      n2c.push_back(m(0, 0));
-      uc.push_back(m.template block<3, 3>(1, 1));
-    }
-    const Bernstein<Scalar> n2(std::move(n2c), nu.a(), nu.b());
     // Column 0 below the weight: a = |Q_rot|^2 p (TR), |Q_rot|^2 p1 + U p2 (TRT), w (minimal).
     Bernstein<V3> a = tr1[k];
-    if (method != kernel::TranslationMethod::minimal) a = kernel::product(n2, tr1[k]);
+    if (method != kernel::TranslationMethod::minimal) {
+      std::vector<Scalar> n2;
+      for (const auto& m : nu.coeffs()) n2.push_back(m(0, 0));
+      a = kernel::product(Bernstein<Scalar>(std::move(n2), nu.a(), nu.b()), tr1[k]);
+    }
+    a = kernel::elevate(a, d - a.degree());
     if (method == kernel::TranslationMethod::trt) {
-      auto b = kernel::product(Bernstein<M3>(std::move(uc), nu.a(), nu.b()), tr2[k], times);
-      const int e = std::max(a.degree(), b.degree());
-      a = kernel::elevate(a, e - a.degree());
-      b = kernel::elevate(b, e - b.degree());
+      std::vector<M3> u;
+      for (const auto& m : nu.coeffs()) u.push_back(m.template block<3, 3>(1, 1));
+      auto b = kernel::product(Bernstein<M3>(std::move(u), nu.a(), nu.b()), tr2[k], times);
+      b = kernel::elevate(b, d - b.degree());
       std::vector<V3> c;
-      for (int i = 0; i <= e; ++i) c.push_back(V3(a[i] + b[i]));
+      for (int i = 0; i <= d; ++i) c.push_back(V3(a[i] + b[i]));
       a = Bernstein<V3>(std::move(c), a.a(), a.b());
     }
-    d = std::max(nu.degree(), a.degree());
     const auto m = kernel::elevate(nu, d - nu.degree());
-    a = kernel::elevate(a, d - a.degree());
     std::vector<M4> c = m.coeffs();
     for (int i = 0; i <= d; ++i) c[static_cast<std::size_t>(i)].template block<3, 1>(1, 0) = a[i];
     pieces.emplace_back(std::move(c), m.a(), m.b());

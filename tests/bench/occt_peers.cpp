@@ -54,6 +54,7 @@
 #include <CGAL/Orthogonal_k_neighbor_search.h>
 #include <CGAL/property_map.h>
 
+#include "occt_convert.hpp"
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakeWire.hxx>
@@ -74,10 +75,7 @@
 #include <STEPControl_Reader.hxx>
 #include <STEPControl_Writer.hxx>
 #include <Standard_Failure.hxx>
-#include <TColStd_Array1OfInteger.hxx>
 #include <TColStd_Array1OfReal.hxx>
-#include <TColStd_Array2OfReal.hxx>
-#include <TColgp_Array1OfPnt.hxx>
 #include <TColgp_Array2OfPnt.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
@@ -90,6 +88,7 @@
 
 namespace {
 using namespace qmotion;
+using bench::to_occt;
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 using M4 = Eigen::Matrix4d;
@@ -112,17 +111,13 @@ double median(std::vector<double> v) {
 struct Frames {
   kernel::BSpline<M4> M, dM, ddM;
   double a = 0, b = 1;
-  std::vector<double> knots;
-  int degree = 0;
 
   explicit Frames(const kernel::Motion<double>& m)
       : M(sweep::matrix_from_factors(*m.factors)),
         dM(kernel::derivative(M)),
         ddM(kernel::derivative(dM)),
         a(m.a()),
-        b(m.b()),
-        knots(M.knots()),
-        degree(M.degree()) {}
+        b(m.b()) {}
 
   void at(double t, M4& H, M4* dH = nullptr, M4* ddH = nullptr) const {
     const M4 m = kernel::evaluate(M, t);
@@ -139,13 +134,8 @@ struct Frames {
   /// Interior breakpoints where the motion is less than C^k.
   std::vector<double> breaks(int k) const {
     std::vector<double> out;
-    for (std::size_t i = static_cast<std::size_t>(degree) + 1; i + degree + 1 < knots.size();) {
-      std::size_t j = i;
-      while (j < knots.size() && knots[j] == knots[i]) ++j;
-      const int mult = static_cast<int>(j - i);
-      if (degree - mult < k) out.push_back(knots[i]);
-      i = j;
-    }
+    for (const double x : M.breakpoints())
+      if (x != a && x != b && kernel::continuity_at(M, x) < k) out.push_back(x);
     return out;
   }
 };
@@ -180,30 +170,10 @@ struct Case {
   V3 point(double t, double s) const {
     return kernel::apply_point(kernel::evaluate(motion, t), sweep::evaluate(profile, s));
   }
-  int spans() const { return static_cast<int>(frames->breaks(frames->degree + 1).size()) + 1; }
+  int spans() const { return static_cast<int>(frames->M.breakpoints().size()) - 1; }
 };
 
 // ---- OpenCASCADE geometry from ours ---------------------------------------------------
-
-Handle(Geom_BSplineCurve) to_occt(const sweep::NurbsCurve<double>& c) {
-  std::vector<double> k;
-  std::vector<int> mu;
-  io::knots_to_distinct(c.knots, k, mu);
-  const int n = static_cast<int>(c.points.size());
-  TColgp_Array1OfPnt P(1, n);
-  TColStd_Array1OfReal W(1, n), K(1, static_cast<int>(k.size()));
-  TColStd_Array1OfInteger Mu(1, static_cast<int>(k.size()));
-  for (int i = 0; i < n; ++i) {
-    const V3& p = c.points[static_cast<std::size_t>(i)];
-    P.SetValue(i + 1, gp_Pnt(p.x(), p.y(), p.z()));
-    W.SetValue(i + 1, c.weights[static_cast<std::size_t>(i)]);
-  }
-  for (std::size_t i = 0; i < k.size(); ++i) {
-    K.SetValue(static_cast<int>(i) + 1, k[i]);
-    Mu.SetValue(static_cast<int>(i) + 1, mu[i]);
-  }
-  return new Geom_BSplineCurve(P, W, K, Mu, c.degree);
-}
 
 /// The profile moved by the motion at t (a rigid map of the poles; weights unchanged).
 sweep::NurbsCurve<double> placed(const Case& c, double t) {
@@ -562,25 +532,51 @@ TopoDS_Shape read_step(const std::string& path, double& ms) {
   return s;
 }
 
-/// Runs build() `repeats` times (the median is its time), then writes the shape to STEP,
-/// reads it back and measures the deviation of what was read.
-Row measure(const Case& c, const std::string& route, const std::string& settings, int repeats,
-            int resolution, const std::function<TopoDS_Shape()>& build) {
+/// The median wall time (ms) of `repeats` calls of f, after one untimed call when warm_up;
+/// a call over 2 s ends the repeats (one run of a slow route says enough).
+double median_ms(int repeats, const std::function<void()>& f, bool warm_up = false) {
+  if (warm_up) f();
+  std::vector<double> t;
+  for (int i = 0; i < repeats; ++i) {
+    const auto t0 = Clock::now();
+    f();
+    t.push_back(ms_since(t0));
+    if (t.back() > 2000) break;
+  }
+  return median(t);
+}
+
+/// One row of the table: fill(r) measures the route; an exception it throws marks the row
+/// failed with its message. Prints the row's progress line on stderr.
+Row table_row(const Case& c, const std::string& route, const std::string& settings,
+              const std::function<void(Row&)>& fill) {
   Row r;
   r.motion = c.motion_name;
   r.profile = c.profile_name;
   r.route = route;
   r.settings = settings;
   try {
-    std::vector<double> times;
+    fill(r);
+    r.ok = true;
+  } catch (const Standard_Failure& e) {
+    r.why =
+        std::string("OpenCASCADE: ") + (e.GetMessageString() ? e.GetMessageString() : "failure");
+  } catch (const std::exception& e) {
+    r.why = e.what();
+  }
+  std::cerr << "  " << r.route << " [" << r.settings << "]: "
+            << (r.ok ? fmt(r.build_ms) + " ms, deviation " + fmt(r.dev, 2) : "failed: " + r.why)
+            << "\n";
+  return r;
+}
+
+/// Runs build() `repeats` times (the median is its time), then writes the shape to STEP,
+/// reads it back and measures the deviation of what was read.
+Row measure(const Case& c, const std::string& route, const std::string& settings, int repeats,
+            int resolution, const std::function<TopoDS_Shape()>& build) {
+  return table_row(c, route, settings, [&](Row& r) {
     TopoDS_Shape shape;
-    for (int i = 0; i < repeats; ++i) {
-      const auto t0 = Clock::now();
-      shape = build();
-      times.push_back(ms_since(t0));
-      if (times.back() > 2000) break;  // slow routes: one run says enough
-    }
-    r.build_ms = median(times);
+    r.build_ms = median_ms(repeats, [&] { shape = build(); });
     describe(shape, r);
     const std::string path = temp_step("peer");
     r.write_ms = occt_write_step(shape, path);
@@ -590,68 +586,20 @@ Row measure(const Case& c, const std::string& route, const std::string& settings
     if (faces.empty()) throw std::runtime_error("no face read back");
     r.dev = deviation(c, faces, resolution);
     r.rel = r.dev / c.diagonal;
-    r.ok = true;
-  } catch (const Standard_Failure& e) {
-    r.why =
-        std::string("OpenCASCADE: ") + (e.GetMessageString() ? e.GetMessageString() : "failure");
-  } catch (const std::exception& e) {
-    r.why = e.what();
-  }
-  std::cerr << "  " << r.route << " [" << r.settings << "]: "
-            << (r.ok ? fmt(r.build_ms) + " ms, deviation " + fmt(r.dev, 2) : "failed: " + r.why)
-            << "\n";
-  return r;
+  });
 }
 
 struct WriteTimes {  // route 1's export against OpenCASCADE's writers alone, same face
   double step_ours = 0, step_occt = 0, iges_ours = 0, iges_occt = 0;
 };
 
-Handle(Geom_BSplineSurface) to_occt(const sweep::NurbsSurface<double>& s) {
-  std::vector<double> ku, kv;
-  std::vector<int> mu, mv;
-  io::knots_to_distinct(s.knots_u, ku, mu);
-  io::knots_to_distinct(s.knots_v, kv, mv);
-  const int nu = static_cast<int>(s.points.size()), nv = static_cast<int>(s.points[0].size());
-  TColgp_Array2OfPnt P(1, nu, 1, nv);
-  TColStd_Array2OfReal W(1, nu, 1, nv);
-  for (int i = 0; i < nu; ++i)
-    for (int j = 0; j < nv; ++j) {
-      const V3& p = s.points[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
-      P.SetValue(i + 1, j + 1, gp_Pnt(p.x(), p.y(), p.z()));
-      W.SetValue(i + 1, j + 1, s.weights[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)]);
-    }
-  auto arr = [](const std::vector<double>& k, const std::vector<int>& m, TColStd_Array1OfReal& K,
-                TColStd_Array1OfInteger& M) {
-    for (std::size_t i = 0; i < k.size(); ++i) {
-      K.SetValue(static_cast<int>(i) + 1, k[i]);
-      M.SetValue(static_cast<int>(i) + 1, m[i]);
-    }
-  };
-  TColStd_Array1OfReal KU(1, static_cast<int>(ku.size())), KV(1, static_cast<int>(kv.size()));
-  TColStd_Array1OfInteger MU(1, static_cast<int>(mu.size())), MV(1, static_cast<int>(mv.size()));
-  arr(ku, mu, KU, MU);
-  arr(kv, mv, KV, MV);
-  return new Geom_BSplineSurface(P, W, KU, KV, MU, MV, s.degree_u, s.degree_v);
-}
-
 /// Route 1: qmotion builds the exact surface and writes it with io::write_step. Also times
 /// io::write_step / write_iges against OpenCASCADE's writers alone on the same face.
 Row exact_route(const Case& c, int repeats, WriteTimes& wt) {
-  Row r;
-  r.motion = c.motion_name;
-  r.profile = c.profile_name;
-  r.route = "1 qmotion exact";
-  r.settings = "—";
-  try {
-    std::vector<double> times;
+  return table_row(c, "1 qmotion exact", "—", [&](Row& r) {
     sweep::NurbsSurface<double> s;
-    for (int i = 0; i < repeats; ++i) {
-      const auto t0 = Clock::now();
-      s = sweep::to_nurbs(sweep::kinematic_surface(c.motion, c.profile));
-      times.push_back(ms_since(t0));
-    }
-    r.build_ms = median(times);
+    r.build_ms = median_ms(
+        repeats, [&] { s = sweep::to_nurbs(sweep::kinematic_surface(c.motion, c.profile)); });
     r.poles = static_cast<long>(s.points.size() * s.points.front().size());
     r.degrees = std::to_string(s.degree_u) + "×" + std::to_string(s.degree_v);
     const std::string path = temp_step("exact");
@@ -661,43 +609,30 @@ Row exact_route(const Case& c, int repeats, WriteTimes& wt) {
     if (faces.size() != 1) throw std::runtime_error("expected one face back");
     r.dev = parametric_deviation(c, faces.front());
     r.rel = r.dev / c.diagonal;
-    r.ok = true;
     // Writing: ours against OpenCASCADE's writers alone on the same face (built once,
     // outside the timing), each warmed up once, then the median of at least three.
     const TopoDS_Face face = BRepBuilderAPI_MakeFace(to_occt(s), 1e-7).Face();
     const std::string igs = (fs::temp_directory_path() / "occt_peers_exact.igs").string();
-    const auto timed = [&](const std::function<void()>& f) {
-      f();
-      std::vector<double> t;
-      for (int i = 0; i < std::max(3, repeats); ++i) {
-        const auto t0 = Clock::now();
-        f();
-        t.push_back(ms_since(t0));
-      }
-      return median(t);
-    };
-    r.write_ms = wt.step_ours = timed([&] { io::write_step(path, s, {}); });
-    wt.step_occt = timed([&] { occt_write_step(face, path); });
-    wt.iges_ours = timed([&] { io::write_iges(igs, s, {}); });
-    wt.iges_occt = timed([&] {
-      IGESControl_Controller::Init();
-      IGESControl_Writer w("MM", 1);
-      w.AddShape(face);
-      w.ComputeModel();
-      if (!w.Write(igs.c_str())) throw std::runtime_error("IGES writer failed");
-    });
+    const int n = std::max(3, repeats);
+    r.write_ms = wt.step_ours = median_ms(
+        n, [&] { io::write_step(path, s, {}); }, true);
+    wt.step_occt = median_ms(
+        n, [&] { occt_write_step(face, path); }, true);
+    wt.iges_ours = median_ms(
+        n, [&] { io::write_iges(igs, s, {}); }, true);
+    wt.iges_occt = median_ms(
+        n,
+        [&] {
+          IGESControl_Controller::Init();
+          IGESControl_Writer w("MM", 1);
+          w.AddShape(face);
+          w.ComputeModel();
+          if (!w.Write(igs.c_str())) throw std::runtime_error("IGES writer failed");
+        },
+        true);
     fs::remove(path);
     fs::remove(igs);
-  } catch (const Standard_Failure& e) {
-    r.why =
-        std::string("OpenCASCADE: ") + (e.GetMessageString() ? e.GetMessageString() : "failure");
-  } catch (const std::exception& e) {
-    r.why = e.what();
-  }
-  std::cerr << "  " << r.route << " [" << r.settings << "]: "
-            << (r.ok ? fmt(r.build_ms) + " ms, deviation " + fmt(r.dev, 2) : "failed: " + r.why)
-            << "\n";
-  return r;
+  });
 }
 
 /// Route 1 under `--max-degree D --tol T`: io::sweep_nurbs approximates on a common knot

@@ -18,11 +18,9 @@
 // clang-format off
 #include <GeomAPI_PointsToBSplineSurface.hxx>
 #include <GeomAPI_ProjectPointOnSurf.hxx>
-#include <Geom_BSplineSurface.hxx>
-#include <TColStd_Array1OfInteger.hxx>
-#include <TColStd_Array1OfReal.hxx>
-#include <TColStd_Array2OfReal.hxx>
 #include <TColgp_Array2OfPnt.hxx>
+
+#include "occt_convert.hpp"
 // clang-format on
 
 namespace {
@@ -147,32 +145,7 @@ BENCHMARK(BM_GridOurs)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTi
 
 void BM_Peer_GridOcctD0(benchmark::State& st) {
   const auto& g = grid_case();
-  std::vector<double> ku, kv;
-  std::vector<int> mu, mv;
-  io::knots_to_distinct(g.s.knots_u, ku, mu);
-  io::knots_to_distinct(g.s.knots_v, kv, mv);
-  const int nu = static_cast<int>(g.s.points.size()), nv = static_cast<int>(g.s.points[0].size());
-  TColgp_Array2OfPnt poles(1, nu, 1, nv);
-  TColStd_Array2OfReal weights(1, nu, 1, nv);
-  for (int i = 0; i < nu; ++i)
-    for (int j = 0; j < nv; ++j) {
-      const auto& p = g.s.points[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
-      poles.SetValue(i + 1, j + 1, gp_Pnt(p.x(), p.y(), p.z()));
-      weights.SetValue(i + 1, j + 1,
-                       g.s.weights[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)]);
-    }
-  TColStd_Array1OfReal KU(1, static_cast<int>(ku.size())), KV(1, static_cast<int>(kv.size()));
-  TColStd_Array1OfInteger MU(1, static_cast<int>(mu.size())), MV(1, static_cast<int>(mv.size()));
-  for (std::size_t i = 0; i < ku.size(); ++i) {
-    KU.SetValue(static_cast<int>(i) + 1, ku[i]);
-    MU.SetValue(static_cast<int>(i) + 1, mu[i]);
-  }
-  for (std::size_t i = 0; i < kv.size(); ++i) {
-    KV.SetValue(static_cast<int>(i) + 1, kv[i]);
-    MV.SetValue(static_cast<int>(i) + 1, mv[i]);
-  }
-  const Handle(Geom_BSplineSurface) occt =
-      new Geom_BSplineSurface(poles, weights, KU, KV, MU, MV, g.s.degree_u, g.s.degree_v);
+  const Handle(Geom_BSplineSurface) occt = bench::to_occt(g.s);
   // The two agree (checked once, outside the timing).
   const auto ours = io::evaluate_grid(g.s, g.us, g.vs, false);
   double diff = 0;
