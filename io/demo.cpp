@@ -7,7 +7,7 @@
 #include <qmotion/io/export.hpp>
 #include <qmotion/io/interpolate.hpp>
 #include <qmotion/io/nurbs_json.hpp>
-#include <qmotion/io/svg.hpp>
+#include <qmotion/io/render.hpp>
 #include <qmotion/kernel/error.hpp>
 #include <vector>
 
@@ -105,7 +105,15 @@ json write_demo(const std::string& dir) {
     c["file"] = "surface_parabola" + ext;
     report.push_back(c);
   }
-  write_file_atomic((tmp / "demo.svg").string(), render_demo_svg(lm, parabola));
+  {  // The figure: the five poses, the motion, two trajectories and the swept parabola.
+    RenderOptions ro;
+    ro.frames = 0;
+    ro.points = {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0, 0, 20)};
+    ro.profile = sweep::single_edge(parabola);
+    ro.object_size = 6;
+    ro.title = "qmotion demo: " + summary;
+    render_figure(AnyMotion(lm), ro).write((tmp / "demo.svg").string());
+  }
   const json doc{{"motion", {{"file", "motion.json"}, {"summary", summary}}},
                  {"exactness", report}};
   write_file_atomic((tmp / "report.json").string(), doc.dump(2) + "\n");

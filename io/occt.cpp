@@ -34,6 +34,7 @@
 #include <Message_ProgressIndicator.hxx>
 #include <Message_ProgressScope.hxx>
 #include <Poly_Triangulation.hxx>
+#include <RWStl.hxx>
 #include <STEPControl_Controller.hxx>
 #include <STEPControl_Reader.hxx>
 #include <STEPControl_Writer.hxx>
@@ -852,6 +853,29 @@ CadGeometry read_cad(const std::string& path, bool want_surface, const std::stri
                 path + ": OpenCASCADE could not read it: " + e.GetMessageString());
   }
   return g;
+}
+
+std::vector<std::array<Eigen::Vector3d, 3>> read_stl(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw Error(Errc::invalid_input, "--object " + path + ": no such file");
+  quiet_occt();
+  const Handle(Poly_Triangulation) tri = RWStl::ReadFile(path.c_str());
+  if (tri.IsNull() || tri->NbTriangles() == 0)
+    throw Error(Errc::invalid_input, "--object " + path + ": not a readable STL mesh");
+  std::vector<std::array<Eigen::Vector3d, 3>> out;
+  out.reserve(static_cast<std::size_t>(tri->NbTriangles()));
+  for (int i = 1; i <= tri->NbTriangles(); ++i) {
+    int n[3];
+    tri->Triangle(i).Get(n[0], n[1], n[2]);
+    std::array<Eigen::Vector3d, 3> t;
+    for (int k = 0; k < 3; ++k) {
+      const gp_Pnt p = tri->Node(n[k]);
+      t[static_cast<std::size_t>(k)] = Eigen::Vector3d(p.X(), p.Y(), p.Z());
+    }
+    out.push_back(t);
+  }
+  return out;
 }
 
 }  // namespace qmotion::io

@@ -104,4 +104,8 @@ void knots_to_distinct(const std::vector<double>& full, std::vector<double>& dis
 std::vector<double> knots_from_distinct(const std::vector<double>& distinct,
                                         const std::vector<int>& mults);
 
+/// The triangles of an STL file (ASCII or binary, OpenCASCADE's reader), in the file's
+/// coordinates. Errc::invalid_input naming the file when it is missing or unreadable.
+std::vector<std::array<Eigen::Vector3d, 3>> read_stl(const std::string& path);
+
 }  // namespace qmotion::io

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <qmotion/io/atomic_file.hpp>
+#include <qmotion/io/canvas.hpp>
 #include <qmotion/io/compare.hpp>
 #include <qmotion/io/demo.hpp>
 #include <qmotion/io/evaluate.hpp>
@@ -21,6 +22,7 @@
 #include <qmotion/io/profiles.hpp>
 #include <qmotion/io/progress.hpp>
 #include <qmotion/io/qspline.hpp>
+#include <qmotion/io/render.hpp>
 #include <qmotion/io/toolpath.hpp>
 #include <qmotion/io/units.hpp>
 #include <qmotion/kernel/dual_quaternion.hpp>

@@ -13,7 +13,7 @@ packages=(
   nlohmann-json3-dev libcli11-dev
   libocct-foundation-dev libocct-modeling-data-dev libocct-modeling-algorithms-dev
   libocct-data-exchange-dev libtbb-dev libsimdjson-dev
-  python3 python3-dev python3-numpy pybind11-dev
+  python3 python3-dev python3-numpy pybind11-dev libcairo2-dev
 )
 if [[ "${1:-}" == "--test" ]]; then
   packages+=(googletest libgtest-dev libgmock-dev libbenchmark-dev clang-format git python3 python3-pytest freecad-python3

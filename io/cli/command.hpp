@@ -51,6 +51,8 @@ Command add_demo(CLI::App& app);
 Command add_qspline(CLI::App& app);
 Command add_compare(CLI::App& app);
 Command add_toolpath(CLI::App& app);
+Command add_render(CLI::App& app);
+Command add_plot(CLI::App& app);
 
 /// Runs the qmotion command line; returns the exit status of SPEC §6. Throws
 /// qmotion::Error for user-facing failures (main maps them to their exit status).

@@ -1478,7 +1478,17 @@ TEST(Cli, DemoWritesEveryFormatAndAnExactnessReport) {
   for (const char* f :
        {"motion.json", "demo.svg", "report.json", "surface_parabola.step", "surface_parabola.igs"})
     EXPECT_TRUE(fs::exists(dir / f)) << f;
-  EXPECT_NE(slurp(dir / "demo.svg").find("<polyline"), std::string::npos);
+  // The figure by the renderer: five numbered key poses, two trajectories, the swept
+  // parabola.
+  const std::string svg = slurp(dir / "demo.svg");
+  auto count = [&](const std::string& needle) {
+    std::size_t n = 0;
+    for (auto p = svg.find(needle); p != std::string::npos; p = svg.find(needle, p + 1)) ++n;
+    return n;
+  };
+  EXPECT_EQ(count("class=\"key-marker\""), 5u);
+  EXPECT_EQ(count("class=\"trajectory\""), 2u);
+  EXPECT_GT(count("class=\"surface\""), 100u);
   for (const auto& e : fs::directory_iterator(dir))
     EXPECT_NE(e.path().filename().string().rfind(".qmotion", 0), 0u);
 }
@@ -1503,6 +1513,51 @@ TEST(Cli, DemoWritesAllItsFilesOrNone) {
   ASSERT_EQ(run({"demo", "-o", dir.string() + "/"}).status, 0);
   EXPECT_TRUE(fs::exists(dir / "mine.txt"));
   EXPECT_TRUE(fs::exists(dir / "surface_parabola.step"));
+}
+
+TEST(Cli, RenderAndPlotWriteFiguresAndRefuseBadOptions) {
+  const fs::path motion = scratch_dir() / "render_motion.json";
+  ASSERT_EQ(
+      run({"interpolate", kData + "/poses/five_positions.json", "-o", motion.string()}).status, 0);
+  const fs::path svg = scratch_dir() / "render.svg", png = scratch_dir() / "plot.png";
+  fs::remove(svg);
+  fs::remove(png);
+  Result r = run({"render", motion.string(), "-o", svg.string(), "--point", "0,0,0", "--point",
+                  "0,0,20", "--profile", "segment:0,0,0:0,0,10", "--view", "front", "--size",
+                  "640,480", "--frames", "4"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("640x480, 2 trajectories, 4 instants, 5 key poses, swept surface"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(slurp(svg).find("width=\"640\" height=\"480\""), std::string::npos);
+  r = run({"plot", motion.string(), "-o", png.string(), "--quantity", "angular-speed", "--compare",
+           motion.string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(fs::exists(png));
+  EXPECT_NE(r.err.find("max"), std::string::npos);
+  // Bad input: exit 2 naming the option, nothing written.
+  const fs::path out = scratch_dir() / "refused.svg";
+  const std::vector<std::pair<std::vector<std::string>, std::string>> bad = {
+      {{"render", motion.string(), "-o", out.string(), "--view", "diagonal"}, "--view diagonal"},
+      {{"render", motion.string(), "-o", out.string(), "--size", "0,480"}, "--size 0,480"},
+      {{"render", motion.string(), "-o", out.string(), "--size", "640"}, "--size 640"},
+      {{"render", motion.string(), "-o", out.string(), "--frames", "-3"}, "--frames -3"},
+      {{"render", motion.string(), "-o", out.string(), "--point", "1,2"}, "--point"},
+      {{"render", motion.string(), "-o", out.string(), "--object", "nothing.stl"}, "nothing.stl"},
+      {{"render", motion.string(), "-o", (scratch_dir() / "refused.pdf").string()}, ".svg or .png"},
+      {{"render", (scratch_dir() / "no_motion.json").string(), "-o", out.string()},
+       "no_motion.json"},
+      {{"plot", motion.string(), "-o", out.string(), "--quantity", "jerk"}, "--quantity jerk"},
+      {{"plot", motion.string(), "-o", out.string(), "--quantity", "speed", "--size", "10,10"},
+       "--size 10,10"},
+  };
+  for (const auto& [args, needle] : bad) {
+    fs::remove(out);
+    r = run(args);
+    EXPECT_EQ(r.status, 2) << needle << ": " << r.err;
+    EXPECT_NE(r.err.find(needle), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out)) << needle;
+  }
 }
 
 }  // namespace

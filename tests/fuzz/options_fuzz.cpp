@@ -3,7 +3,7 @@
 //   0 `qmotion eval MOTION ARGS...`, 1 `qmotion info MOTION ARGS...`,
 //   2 `qmotion check CURVE --motion MOTION ARGS...` (ARGS: the rest, one per line; these
 //     commands only print), 3 a profile shorthand (`circle:r`, `arc:r,a0,a1`, ...),
-//   4 a point "x,y,z", 5 a number, read as double and exactly.
+//   4 a point "x,y,z" (also as --view and --size), 5 a number, read as double and exactly.
 // The motion and curve are written once, at start-up, to a temporary folder.
 #include <unistd.h>
 
@@ -13,6 +13,7 @@
 #include <qmotion/io/export.hpp>
 #include <qmotion/io/interpolate.hpp>
 #include <qmotion/io/profiles.hpp>
+#include <qmotion/io/render.hpp>
 #include <sstream>
 #include <vector>
 
@@ -69,6 +70,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       break;
     case 4:
       fuzz::accept_refusals([&] { (void)io::parse_point(rest, "--point"); });
+      fuzz::accept_refusals([&] { (void)io::parse_view(rest); });
+      fuzz::accept_refusals([&] { (void)io::parse_size(rest); });
       break;
     default:
       fuzz::accept_refusals([&] {

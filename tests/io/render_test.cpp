@@ -1,0 +1,301 @@
+// tests/io/render_test.cpp: the pictures (io/render.hpp): the plotted quantities are the
+// motion's derivatives, the PNG has its size and content, the SVG draws what it says, bad
+// options are refused by name.
+#include <cairo.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <io_test_util.hpp>
+#include <qmotion/io/interpolate.hpp>
+#include <qmotion/io/render.hpp>
+#include <qmotion/kernel/dual_quaternion.hpp>
+#include <qmotion/sweep/profiles.hpp>
+#include <string>
+
+namespace qmotion {
+namespace {
+
+namespace fs = std::filesystem;
+using Eigen::Vector3d;
+
+kernel::Motion<double> interpolated(const std::string& poses, const std::string& form = "") {
+  io::InterpolateOptions o;
+  o.form = form;
+  return io::interpolate(io::read_poses(test::test_data(poses)), o).motion;
+}
+
+/// The rigid map of a q-motion at t, through the kernel's own point map.
+Eigen::Matrix<double, 3, 4> frame(const kernel::Motion<double>& m, double t) {
+  const auto q = kernel::evaluate(m.curve, t);
+  Eigen::Matrix<double, 3, 4> f;
+  f.col(3) = kernel::apply_point(q, Vector3d(Vector3d::Zero()));
+  for (int i = 0; i < 3; ++i)
+    f.col(i) = kernel::apply_point(q, Vector3d(Vector3d::Unit(i))) - f.col(3);
+  return f;
+}
+
+/// |omega| from rotation matrices at t -/+ h: skew(omega) = R' R^T.
+double angular_speed_by_differences(const kernel::Motion<double>& m, double t, double h) {
+  const Eigen::Matrix3d dR =
+      (frame(m, t + h).leftCols<3>() - frame(m, t - h).leftCols<3>()) / (2 * h);
+  const Eigen::Matrix3d W = dR * frame(m, t).leftCols<3>().transpose();
+  return Vector3d(W(2, 1) - W(1, 2), W(0, 2) - W(2, 0), W(1, 0) - W(0, 1)).norm() / 2;
+}
+
+fs::path scratch(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / "qmotion_render_test";
+  fs::create_directories(d);
+  return d / name;
+}
+
+std::size_t count(const std::string& s, const std::string& needle) {
+  std::size_t n = 0;
+  for (auto p = s.find(needle); p != std::string::npos; p = s.find(needle, p + 1)) ++n;
+  return n;
+}
+
+TEST(Plot, SpeedAndAngularSpeedAreTheMotionsDerivatives) {
+  for (const auto& [poses, form] :
+       {std::pair<std::string, std::string>{"poses/five_positions.json", ""},
+        {"poses/helix_40.json", "bspline"}}) {
+    const kernel::Motion<double> m = interpolated(poses, form);
+    const io::AnyMotion any(m);
+    io::PlotOptions o;
+    o.point = Vector3d(3, -2, 5);
+    o.samples = 200;
+    const io::PlotSeries speed = io::sample_quantity(any, o);
+    o.quantity = io::Quantity::angular_speed;
+    const io::PlotSeries spin = io::sample_quantity(any, o);
+    ASSERT_EQ(speed.t.size(), spin.t.size());
+    ASSERT_GE(speed.t.size(), 200u);
+    const double h = 1e-6 * (m.b() - m.a());
+    double worst_speed = 0, worst_spin = 0;
+    for (std::size_t i = 0; i < speed.t.size(); i += 7) {
+      const double t = std::clamp(speed.t[i], m.a() + 2 * h, m.b() - 2 * h);
+      if (std::abs(t - speed.t[i]) > 0) continue;  // the differences need room
+      const Eigen::Vector4d x(3, -2, 5, 1);
+      const double fd = ((frame(m, t + h) - frame(m, t - h)) * x).norm() / (2 * h);
+      worst_speed = std::max(worst_speed, std::abs(speed.value[i] - fd) / fd);
+      const double w = angular_speed_by_differences(m, t, h);
+      worst_spin = std::max(worst_spin, std::abs(spin.value[i] - w) / std::max(w, 1e-3));
+    }
+    EXPECT_LT(worst_speed, 1e-6) << poses;
+    EXPECT_LT(worst_spin, 1e-5) << poses;
+    EXPECT_EQ(speed.keys.size(), m.provenance->parameters.size());
+    EXPECT_LE(speed.min, speed.max);
+  }
+}
+
+TEST(Plot, CurvatureOfARotationAboutOneAxisIsTheCircles) {
+  // Rotations about z only, no translation: every point runs on a circle about z.
+  io::PoseSet set = io::parse_poses_json(
+      R"({"poses":[
+      {"t":0,"position":[0,0,0],"rotation":{"axis_angle":{"axis":[0,0,1],"angle_deg":0}}},
+      {"t":0.3,"position":[0,0,0],"rotation":{"axis_angle":{"axis":[0,0,1],"angle_deg":40}}},
+      {"t":0.7,"position":[0,0,0],"rotation":{"axis_angle":{"axis":[0,0,1],"angle_deg":110}}},
+      {"t":1,"position":[0,0,0],"rotation":{"axis_angle":{"axis":[0,0,1],"angle_deg":150}}}]})",
+      "coaxial");
+  const io::AnyMotion m(io::interpolate(set, {}).motion);
+  io::PlotOptions o;
+  o.quantity = io::Quantity::curvature;
+  o.point = Vector3d(4, 0, 7);  // radius 4 about z
+  const io::PlotSeries k = io::sample_quantity(m, o);
+  for (double v : k.value) EXPECT_NEAR(v, 0.25, 1e-9);
+  o.quantity = io::Quantity::weights;
+  const io::PlotSeries w = io::sample_quantity(m, o);
+  EXPECT_NEAR(w.max, 1.0, 1e-15);
+  EXPECT_GT(w.min, 0.0);
+}
+
+TEST(Plot, QuaternionSplineSpeedMatchesItsPositions) {
+  io::QSplineOptions qo;
+  qo.scheme = "quartic";
+  const io::QSplineMotion q =
+      io::qspline(io::read_poses(test::test_data("poses/five_positions.json")), qo);
+  io::PlotOptions o;
+  o.point = Vector3d(1, 2, 3);
+  const io::PlotSeries s = io::sample_quantity(io::AnyMotion(q), o);
+  const double h = 1e-6;
+  for (std::size_t i = 1; i + 1 < s.t.size(); i += 11) {
+    const double t = s.t[i];
+    const double fd =
+        (q.spline.place(t + h, o.point) - q.spline.place(t - h, o.point)).norm() / (2 * h);
+    EXPECT_NEAR(s.value[i], fd, 1e-5 * fd) << t;
+  }
+}
+
+TEST(Render, SvgDrawsWhatTheResultCounts) {
+  const kernel::Motion<double> m = interpolated("poses/five_positions.json");
+  io::RenderOptions o;
+  o.points = {Vector3d(0, 0, 0), Vector3d(0, 0, 20), Vector3d(10, 0, 0)};
+  o.frames = 5;
+  o.profile = sweep::single_edge(sweep::NurbsCurve<double>{
+      2, {0, 0, 0, 1, 1, 1}, {{-10, 0, 10}, {0, 0, -10}, {10, 0, 10}}, {1, 1, 1}});
+  io::RenderResult r;
+  const std::string svg = io::render_figure(io::AnyMotion(m), o, &r).svg();
+  EXPECT_EQ(r.trajectories, 3);
+  EXPECT_EQ(r.object_poses, 5);
+  EXPECT_EQ(r.key_poses, 5);
+  EXPECT_EQ(count(svg, "class=\"trajectory\""), 3u);
+  EXPECT_EQ(count(svg, "class=\"object-pose\""), 5u);
+  EXPECT_EQ(count(svg, "class=\"key-marker\""), 5u);
+  // In greyscale the trajectories stay apart by their dash patterns: pairwise different.
+  std::vector<std::string> dashes;
+  for (auto p = svg.find("class=\"trajectory\""); p != std::string::npos;
+       p = svg.find("class=\"trajectory\"", p + 1)) {
+    const std::string element = svg.substr(p, svg.find("/>", p) - p);
+    const auto d = element.find("stroke-dasharray=\"");
+    dashes.push_back(d == std::string::npos ? "solid"
+                                            : element.substr(d, element.find('"', d + 18) - d));
+  }
+  ASSERT_EQ(dashes.size(), 3u);
+  EXPECT_NE(dashes[0], dashes[1]);
+  EXPECT_NE(dashes[1], dashes[2]);
+  EXPECT_NE(dashes[0], dashes[2]);
+  EXPECT_EQ(count(svg, "class=\"surface\""), static_cast<std::size_t>(r.surface_quads));
+  EXPECT_GT(r.surface_quads, 100);
+  EXPECT_GT(count(svg, "class=\"iso-line\""), 100u);
+  // Every cube face drawn faces the viewer: 3 of 6 per pose at most, at least 1.
+  const std::size_t key_faces = count(svg, "class=\"key-face\"");
+  EXPECT_GE(key_faces, 5u);
+  EXPECT_LE(key_faces, 15u);
+  // The content fits the page.
+  EXPECT_GT(r.scale, 0);
+  for (const auto& k : m.provenance->poses) {
+    const Vector3d p = k.position;
+    const Eigen::Vector2d px = r.origin + r.scale * Eigen::Vector2d(p.dot(r.right), -p.dot(r.up));
+    EXPECT_GT(px.x(), 0);
+    EXPECT_LT(px.x(), o.width);
+    EXPECT_GT(px.y(), 30);  // below the title
+    EXPECT_LT(px.y(), o.height);
+  }
+}
+
+TEST(Render, ObjectsFromAMeshOrAProfileArePlacedAtEveryInstant) {
+  const io::AnyMotion m(interpolated("poses/five_positions.json"));
+  const fs::path stl = scratch("tetrahedron.stl");
+  {
+    std::ofstream f(stl);
+    f << "solid t\n";
+    const char* tris[4] = {"0 0 0|8 0 0|0 8 0", "0 0 0|0 0 8|8 0 0", "0 0 0|0 8 0|0 0 8",
+                           "8 0 0|0 0 8|0 8 0"};
+    for (const char* t : tris) {
+      std::string v(t);
+      f << "facet normal 0 0 0\nouter loop\n";
+      for (std::size_t a = 0, b; a != std::string::npos; a = b == std::string::npos ? b : b + 1) {
+        b = v.find('|', a);
+        f << "vertex " << v.substr(a, b == std::string::npos ? b : b - a) << "\n";
+      }
+      f << "endloop\nendfacet\n";
+    }
+    f << "endsolid t\n";
+  }
+  io::RenderOptions o;
+  o.object = stl.string();
+  o.frames = 3;
+  io::RenderResult r;
+  std::string svg = io::render_figure(m, o, &r).svg();
+  EXPECT_EQ(count(svg, "class=\"object-face\""), 4u * 3u);  // every triangle, both sides
+  EXPECT_EQ(count(svg, "class=\"key-face\""), 4u * 5u);
+  o.object = "segment:0,0,0:6,0,0";
+  svg = io::render_figure(m, o, &r).svg();
+  EXPECT_EQ(count(svg, "class=\"object-curve\""), 3u);
+  EXPECT_EQ(count(svg, "class=\"key-curve\""), 5u);
+  o.object = "segment:0,0,0";
+  EXPECT_TRUE(
+      test::throws_error([&] { io::render_figure(m, o); }, Errc::invalid_input, {"segment:0,0,0"}));
+}
+
+TEST(Render, PngHasItsSizeAndIsNotBlank) {
+  const kernel::Motion<double> m = interpolated("poses/five_positions.json");
+  io::RenderOptions o;
+  o.output = scratch("figure.png").string();
+  o.width = 420;
+  o.height = 300;
+  fs::remove(o.output);
+  io::render(io::AnyMotion(m), o);
+  cairo_surface_t* s = cairo_image_surface_create_from_png(o.output.c_str());
+  ASSERT_EQ(cairo_surface_status(s), CAIRO_STATUS_SUCCESS);
+  EXPECT_EQ(cairo_image_surface_get_width(s), 420);
+  EXPECT_EQ(cairo_image_surface_get_height(s), 300);
+  const unsigned char* data = cairo_image_surface_get_data(s);
+  const int stride = cairo_image_surface_get_stride(s);
+  std::size_t inked = 0;
+  for (int y = 0; y < 300; ++y)
+    for (int x = 0; x < 420; ++x) {
+      const unsigned char* px = data + y * stride + 4 * x;  // B, G, R, A
+      inked += (px[0] < 245 || px[1] < 245 || px[2] < 245);
+    }
+  cairo_surface_destroy(s);
+  const double share = static_cast<double>(inked) / (420.0 * 300.0);
+  EXPECT_GT(share, 0.03);
+  EXPECT_LT(share, 0.7);
+  // The plot as PNG too.
+  io::PlotOptions po;
+  po.output = scratch("plot.png").string();
+  po.width = 500;
+  po.height = 260;
+  io::plot({io::AnyMotion(m)}, po);
+  s = cairo_image_surface_create_from_png(po.output.c_str());
+  ASSERT_EQ(cairo_surface_status(s), CAIRO_STATUS_SUCCESS);
+  EXPECT_EQ(cairo_image_surface_get_width(s), 500);
+  EXPECT_EQ(cairo_image_surface_get_height(s), 260);
+  cairo_surface_destroy(s);
+}
+
+TEST(Render, BadOptionsAreRefusedByName) {
+  const io::AnyMotion m(interpolated("poses/five_positions.json"));
+  auto with = [&](auto edit) {
+    io::RenderOptions o;
+    o.output = scratch("bad.svg").string();
+    edit(o);
+    return [o, &m] { io::render(m, o); };
+  };
+  using test::throws_error;
+  EXPECT_TRUE(throws_error(with([](io::RenderOptions& o) { o.view = "sideways"; }),
+                           Errc::invalid_input, {"--view sideways", "iso, top, front, side"}));
+  EXPECT_TRUE(throws_error(with([](io::RenderOptions& o) { o.view = "0,0,0"; }),
+                           Errc::invalid_input, {"--view 0,0,0"}));
+  EXPECT_TRUE(throws_error(with([](io::RenderOptions& o) { o.width = 0; }), Errc::invalid_input,
+                           {"--size 0,720"}));
+  EXPECT_TRUE(throws_error(with([](io::RenderOptions& o) { o.frames = -1; }), Errc::invalid_input,
+                           {"--frames -1"}));
+  EXPECT_TRUE(throws_error(with([](io::RenderOptions& o) { o.object = "missing.stl"; }),
+                           Errc::invalid_input, {"missing.stl"}));
+  EXPECT_TRUE(throws_error(with([](io::RenderOptions& o) { o.output = "figure.pdf"; }),
+                           Errc::invalid_input, {"figure.pdf", ".svg or .png"}));
+  EXPECT_FALSE(fs::exists(scratch("bad.svg")));
+  for (const std::string size : {"0,100", "100", "100,x", "20001,100", "-5,100", ""})
+    EXPECT_TRUE(
+        throws_error([&] { io::parse_size(size); }, Errc::invalid_input, {"--size " + size}));
+  EXPECT_EQ(io::parse_size("640,480"), std::make_pair(640, 480));
+  EXPECT_TRUE(
+      throws_error([] { io::parse_quantity("jerk"); }, Errc::invalid_input, {"--quantity jerk"}));
+  EXPECT_EQ(io::parse_quantity("angular-speed"), io::Quantity::angular_speed);
+  io::PlotOptions po;
+  po.output = scratch("bad_plot.svg").string();
+  po.samples = 1;
+  EXPECT_TRUE(throws_error([&] { io::plot({m}, po); }, Errc::invalid_input, {"--samples 1"}));
+  EXPECT_FALSE(fs::exists(po.output));
+}
+
+TEST(Render, ViewsLookAlongTheirAxes) {
+  EXPECT_TRUE(io::parse_view("top").isApprox(Vector3d(0, 0, 1)));
+  EXPECT_TRUE(io::parse_view("front").isApprox(Vector3d(0, -1, 0)));
+  EXPECT_TRUE(io::parse_view("side").isApprox(Vector3d(1, 0, 0)));
+  EXPECT_TRUE(io::parse_view("iso").isApprox(Vector3d(1, 1, 1).normalized()));
+  EXPECT_TRUE(io::parse_view("0,0,-2").isApprox(Vector3d(0, 0, -1)));
+  // Top view: x to the right, y up the page.
+  const io::AnyMotion m(interpolated("poses/five_positions.json"));
+  io::RenderOptions o;
+  o.view = "top";
+  io::RenderResult r;
+  io::render_figure(m, o, &r);
+  EXPECT_TRUE(r.right.isApprox(Vector3d::UnitX()));
+  EXPECT_TRUE(r.up.isApprox(Vector3d::UnitY()));
+}
+
+}  // namespace
+}  // namespace qmotion
