@@ -258,16 +258,20 @@ Canvas render_figure(const AnyMotion& motion, const RenderOptions& o, RenderResu
     for (const Rigid& f : frames_at_ts) trajectories.back().push_back(f(x));
   }
 
-  // The swept surface on a grid finer than its iso-lines (kIsoSub quads between two).
+  // The swept surface on a grid finer than its iso-lines: kIsoSub quads between two along
+  // the profile; along t, 12 iso-lines, and quads enough to follow every span (4 a span, up
+  // to 1200).
   constexpr int kIsoU = 12, kIsoV = 8, kIsoSub = 4;
+  const int sub_u =
+      std::clamp(static_cast<int>(4 * (acc.breaks.size() - 1) + kIsoU - 1) / kIsoU, kIsoSub, 100);
   struct SurfaceGrid {
     std::vector<std::vector<Vector3d>> p;  // [i along t][j along the profile]
   };
   std::vector<SurfaceGrid> grids;
   if (o.profile) {
     std::vector<Rigid> fu;
-    for (int i = 0; i <= kIsoU * kIsoSub; ++i)
-      fu.push_back(acc.frame(acc.a + (acc.b - acc.a) * i / (kIsoU * kIsoSub)));
+    for (int i = 0; i <= kIsoU * sub_u; ++i)
+      fu.push_back(acc.frame(acc.a + (acc.b - acc.a) * i / (kIsoU * sub_u)));
     for (const auto& edge : o.profile->edges) {
       const double v0 = edge.knots.front(), v1 = edge.knots.back();
       std::vector<Vector3d> xs;
@@ -373,7 +377,7 @@ Canvas render_figure(const AnyMotion& motion, const RenderOptions& o, RenderResu
         face.style.stroke = *face.style.fill;  // hides the seams between quads
         face.style.width = 0.4;
         face.style.cls = "surface";
-        if (i % kIsoSub == 0) face.iso_edges.push_back(3);  // t = const
+        if (i % static_cast<std::size_t>(sub_u) == 0) face.iso_edges.push_back(3);  // t = const
         if (i + 1 == g.p.size() - 1) face.iso_edges.push_back(1);
         if (j % kIsoSub == 0) face.iso_edges.push_back(0);  // profile parameter = const
         if (j + 1 == g.p[i].size() - 1) face.iso_edges.push_back(2);
@@ -493,8 +497,10 @@ Canvas render_figure(const AnyMotion& motion, const RenderOptions& o, RenderResu
     s.cls = "object-pose";
     canvas.circle(project(f.p), 2.2, s);
   }
-  // Every key is marked; past 40 keys only every step-th carries its number.
-  const std::size_t step = (key_maps.size() + 39) / 40;
+  // Every key is marked; past 40 keys only every step-th (20 of them) carries its number
+  // and a ring, the others a dot (none past 200 keys).
+  const std::size_t step = key_maps.size() <= 40 ? 1 : (key_maps.size() + 19) / 20;
+  int key_markers = 0;
   for (std::size_t k = 0; k < key_maps.size(); ++k) {
     Style s;
     s.fill = Rgb{1, 1, 1};
@@ -503,9 +509,18 @@ Canvas render_figure(const AnyMotion& motion, const RenderOptions& o, RenderResu
     s.cls = "key-marker";
     const Vector2d c = project(key_maps[k].p);
     const bool numbered = k % step == 0 || k + 1 == key_maps.size();
-    canvas.circle(c, numbered ? (k < 100 ? 8.5 : 11) : 3, s);
-    if (numbered)
-      canvas.text(c + Vector2d(0, 3.8), std::to_string(k), k < 10 ? 10.5 : 8, Anchor::middle);
+    key_markers += numbered || key_maps.size() <= 200;
+    if (!numbered && key_maps.size() > 200) continue;  // dots denser than pixels: a smear
+    if (!numbered) {
+      s.stroke.reset();
+      s.fill = Rgb{0.1, 0.1, 0.1};
+      canvas.circle(c, 1.6, s);
+      continue;
+    }
+    const std::string label = std::to_string(k);
+    const double font = label.size() == 1 ? 10.5 : label.size() == 2 ? 9 : 8;
+    canvas.circle(c, std::max(8.5, 0.5 * Canvas::text_width(label, font) + 3), s);
+    canvas.text(c + Vector2d(0, 0.36 * font), label, font, Anchor::middle);
   }
 
   // The axis triad, bottom left of the drawing area.
@@ -580,6 +595,7 @@ Canvas render_figure(const AnyMotion& motion, const RenderOptions& o, RenderResu
     result->trajectories = static_cast<int>(trajectories.size());
     result->object_poses = static_cast<int>(frame_maps.size());
     result->key_poses = static_cast<int>(key_maps.size());
+    result->key_markers = key_markers;
     result->surface_quads = quads;
     result->scale = scale;
     result->origin = origin;

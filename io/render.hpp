@@ -40,9 +40,11 @@ struct RenderResult {
   int width = 0, height = 0;
   int trajectories = 0;  ///< polylines of class "trajectory"
   int object_poses = 0;  ///< evenly spaced instants (class "object-pose" markers)
-  /// Key markers (class "key-marker"; numbered, every one up to 40 keys, else every
-  /// ceil(n / 40)-th and the last); the keys' objects are drawn up to 12 keys.
-  int key_poses = 0;
+  int key_poses = 0;     ///< the motion's keys (where it interpolates, else its breakpoints)
+  /// Key markers drawn (class "key-marker": a numbered ring for every key up to 40 keys,
+  /// else for every ceil(n / 20)-th and the last, a dot for the others up to 200 keys); the
+  /// keys' objects are drawn up to 12 keys.
+  int key_markers = 0;
   int surface_quads = 0;
   double scale = 0;                                  ///< pixels per unit of length
   Eigen::Vector2d origin = Eigen::Vector2d::Zero();  ///< pixel position of the world origin

@@ -52,6 +52,9 @@ Command add_render(CLI::App& app) {
                       << r.trajectories
                       << (r.trajectories == 1 ? " trajectory, " : " trajectories, ")
                       << r.object_poses << " instants, " << r.key_poses << " key poses"
+                      << (r.key_markers < r.key_poses
+                              ? " (" + std::to_string(r.key_markers) + " marked)"
+                              : std::string())
                       << (r.surface_quads ? ", swept surface" : "") << ")\n";
             return 0;
           }};

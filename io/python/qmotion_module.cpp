@@ -190,6 +190,7 @@ py::object render_call(const py::handle& motion, const std::string& path, const 
   d["trajectories"] = r.trajectories;
   d["object_poses"] = r.object_poses;
   d["key_poses"] = r.key_poses;
+  d["key_markers"] = r.key_markers;
   d["surface_quads"] = r.surface_quads;
   d["scale"] = r.scale;
   d["origin"] = std::vector<double>{r.origin.x(), r.origin.y()};

@@ -1558,6 +1558,20 @@ TEST(Cli, RenderAndPlotWriteFiguresAndRefuseBadOptions) {
     EXPECT_NE(r.err.find(needle), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(out)) << needle;
   }
+  // Motions of different units on one plot.
+  const fs::path inches = scratch_dir() / "render_motion_in.json";
+  std::string doc = slurp(motion);
+  for (auto u = doc.find("\"units\": \"mm\""); u != std::string::npos;
+       u = doc.find("\"units\": \"mm\"", u))
+    doc.replace(u, 13, "\"units\": \"in\"");
+  std::ofstream(inches) << doc;
+  fs::remove(out);
+  r = run({"plot", motion.string(), "--compare", inches.string(), "-o", out.string(), "--quantity",
+           "speed"});
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("its unit in differs from the first motion's (mm)"), std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(out));
 }
 
 }  // namespace

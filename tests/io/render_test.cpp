@@ -138,6 +138,7 @@ TEST(Render, SvgDrawsWhatTheResultCounts) {
   EXPECT_EQ(r.trajectories, 3);
   EXPECT_EQ(r.object_poses, 5);
   EXPECT_EQ(r.key_poses, 5);
+  EXPECT_EQ(r.key_markers, 5);
   EXPECT_EQ(count(svg, "class=\"trajectory\""), 3u);
   EXPECT_EQ(count(svg, "class=\"object-pose\""), 5u);
   EXPECT_EQ(count(svg, "class=\"key-marker\""), 5u);
@@ -208,6 +209,30 @@ TEST(Render, ObjectsFromAMeshOrAProfileArePlacedAtEveryInstant) {
       test::throws_error([&] { io::render_figure(m, o); }, Errc::invalid_input, {"segment:0,0,0"}));
 }
 
+TEST(Render, ManyKeysAreMarkedWithoutSmearingTheFigure) {
+  std::string doc = "{\"poses\":[";
+  for (int i = 0; i < 300; ++i) {
+    const double a = 0.1 * i;
+    doc += (i ? "," : "") + std::string("{\"t\":") + std::to_string(i) + ",\"position\":[" +
+           std::to_string(50 * std::cos(a)) + "," + std::to_string(50 * std::sin(a)) + "," +
+           std::to_string(a) + "],\"rotation\":{\"axis_angle\":{\"axis\":[0,0,1],\"angle_deg\":" +
+           std::to_string(a * 180 / M_PI) + "}}}";
+  }
+  doc += "]}";
+  io::InterpolateOptions io_opt;
+  io_opt.form = "bspline";
+  const io::AnyMotion m(io::interpolate(io::parse_poses_json(doc, "helix"), io_opt).motion);
+  io::RenderOptions o;
+  io::RenderResult r;
+  const std::string svg = io::render_figure(m, o, &r).svg();
+  EXPECT_EQ(r.key_poses, 300);
+  EXPECT_EQ(r.key_markers, 21);  // keys 0, 15, ..., 285 and the last
+  EXPECT_EQ(count(svg, "class=\"key-marker\""), 21u);
+  EXPECT_EQ(count(svg, "class=\"key-face\""), 0u);  // 300 cubes would hide everything
+  EXPECT_NE(svg.find(">299</text>"), std::string::npos);
+  EXPECT_EQ(count(svg, "class=\"object-pose\""), 7u);
+}
+
 TEST(Render, PngHasItsSizeAndIsNotBlank) {
   const kernel::Motion<double> m = interpolated("poses/five_positions.json");
   io::RenderOptions o;
@@ -264,6 +289,10 @@ TEST(Render, BadOptionsAreRefusedByName) {
                            {"--frames -1"}));
   EXPECT_TRUE(throws_error(with([](io::RenderOptions& o) { o.object = "missing.stl"; }),
                            Errc::invalid_input, {"missing.stl"}));
+  std::ofstream(scratch("garbage.stl")) << "not a mesh\n";
+  EXPECT_TRUE(
+      throws_error(with([](io::RenderOptions& o) { o.object = scratch("garbage.stl").string(); }),
+                   Errc::invalid_input, {"garbage.stl: not a readable STL mesh"}));
   EXPECT_TRUE(throws_error(with([](io::RenderOptions& o) { o.output = "figure.pdf"; }),
                            Errc::invalid_input, {"figure.pdf", ".svg or .png"}));
   EXPECT_FALSE(fs::exists(scratch("bad.svg")));
