@@ -83,7 +83,7 @@ json write_demo(const std::string& dir) {
   // The paper's Figure 5 idea: a parabola of the moving space swept by the motion.
   const sweep::NurbsCurve<double> parabola{
       2, {0, 0, 0, 1, 1, 1}, {{-10, 0, 10}, {0, 0, -10}, {10, 0, 10}}, {1, 1, 1}};
-  write_file_atomic((tmp / "parabola.json").string(), curve_to_json(parabola).dump(1) + "\n");
+  write_file_atomic((tmp / "parabola.json").string(), curve_json_text(parabola));
 
   json report = json::array();
   for (const std::string ext : {".json", ".step", ".igs"}) {

@@ -255,11 +255,9 @@ void write_curve(const sweep::NurbsCurve<double>& c, Format f, const std::string
                  const ExportResult& r, const ExportInfo& info, const json& approximation) {
   switch (f) {
     case Format::json: {
-      json doc = curve_to_json(c);
-      doc["units"] = r.units;
-      doc["continuity"] = r.continuity_u;
-      if (!approximation.is_null()) doc["approximation"] = approximation;
-      write_file_atomic(path, doc.dump(1) + "\n");
+      json extra{{"units", r.units}, {"continuity", r.continuity_u}};
+      if (!approximation.is_null()) extra["approximation"] = approximation;
+      write_file_atomic(path, curve_json_text(c, extra));
       break;
     }
     case Format::step:
@@ -372,18 +370,11 @@ void write_surfaces(const std::vector<sweep::NurbsSurface<double>>& surfaces, Fo
   const bool one_surface = surfaces.size() == 1 && !opt.solid;
   switch (f) {
     case Format::json: {  // exact surfaces per edge (JSON readers handle C0 knots)
-      json doc;
-      if (one_surface) {
-        doc = surface_to_json(surfaces.front());
-      } else {
-        doc = json{{"type", "nurbs_shell"}, {"closed", opt.solid}, {"faces", json::array()}};
-        for (const auto& s : surfaces) doc["faces"].push_back(surface_to_json(s));
-        if (opt.solid) doc["volume"] = *r.volume;
-      }
-      doc["units"] = r.units;
-      doc["continuity"] = {r.continuity_u, r.continuity_v};
-      if (!approximation.is_null()) doc["approximation"] = approximation;
-      write_file_atomic(opt.output, doc.dump(1) + "\n");
+      json extra{{"units", r.units}, {"continuity", {r.continuity_u, r.continuity_v}}};
+      if (!approximation.is_null()) extra["approximation"] = approximation;
+      if (!one_surface && opt.solid) extra["volume"] = *r.volume;
+      write_file_atomic(opt.output, one_surface ? surface_json_text(surfaces.front(), extra)
+                                                : shell_json_text(surfaces, opt.solid, extra));
       r.faces = static_cast<int>(surfaces.size());
       r.poles = count_poles(surfaces);
       return;

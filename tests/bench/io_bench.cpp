@@ -8,10 +8,13 @@
 #include <cstdio>
 #include <fstream>
 #include <map>
+#include <qmotion/io/atomic_file.hpp>
+#include <qmotion/io/export.hpp>
 #include <qmotion/io/interpolate.hpp>
 #include <qmotion/io/json_number.hpp>
 #include <qmotion/io/motion_info.hpp>
 #include <qmotion/io/motion_json.hpp>
+#include <qmotion/io/nurbs_json.hpp>
 #include <qmotion/io/poses.hpp>
 #include <sstream>
 
@@ -98,8 +101,63 @@ void BM_OfstreamSameBytes(benchmark::State& state) {  // the floor: the bytes al
   state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations() * text.size()));
 }
 
+/// The exact trajectory of (1, 0, 2) under the n-pose motion, as trajectory writes it.
+const sweep::NurbsCurve<double>& trajectory(int n) {
+  static std::map<int, sweep::NurbsCurve<double>> cache;
+  auto it = cache.find(n);
+  if (it == cache.end()) {
+    const auto m = io::to_motion(io::parse_motion_text(motion_text(n), "m.json"));
+    it = cache.emplace(n, io::trajectory_nurbs(m, Eigen::Vector3d(1, 0, 2))).first;
+  }
+  return it->second;
+}
+
+const nlohmann::json kTrajectoryExtra{{"units", "mm"}, {"continuity", 2}};
+
+void BM_WriteTrajectoryJson(benchmark::State& state) {  // streamed (trajectory -o .json)
+  const auto& c = trajectory(static_cast<int>(state.range(0)));
+  const std::string path = "bench_io_trajectory.json";
+  std::size_t bytes = 0;
+  for (auto _ : state) {
+    const std::string text = io::curve_json_text(c, kTrajectoryExtra);
+    io::write_file_atomic(path, text);
+    bytes = text.size();
+  }
+  std::remove(path.c_str());
+  state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations() * bytes));
+}
+
+void BM_TrajectoryJsonTextOnly(benchmark::State& state) {  // the formatting share
+  const auto& c = trajectory(static_cast<int>(state.range(0)));
+  for (auto _ : state) benchmark::DoNotOptimize(io::curve_json_text(c, kTrajectoryExtra));
+}
+
+void BM_WriteTrajectoryJsonTree(benchmark::State& state) {  // before: nlohmann's tree, dumped
+  const auto& c = trajectory(static_cast<int>(state.range(0)));
+  const std::string path = "bench_io_trajectory_tree.json";
+  for (auto _ : state) {
+    nlohmann::json doc = io::curve_to_json(c);
+    doc.update(kTrajectoryExtra);
+    io::write_file_atomic(path, doc.dump(1) + "\n");
+  }
+  std::remove(path.c_str());
+}
+
+void BM_OfstreamSameTrajectoryBytes(benchmark::State& state) {  // the floor
+  const std::string text =
+      io::curve_json_text(trajectory(static_cast<int>(state.range(0))), kTrajectoryExtra);
+  const std::string path = "bench_io_trajectory_plain.json";
+  for (auto _ : state) std::ofstream(path, std::ios::binary) << text;
+  std::remove(path.c_str());
+  state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations() * text.size()));
+}
+
 }  // namespace
 
+BENCHMARK(BM_WriteTrajectoryJson)->Arg(100)->Arg(10000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_TrajectoryJsonTextOnly)->Arg(100)->Arg(10000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_WriteTrajectoryJsonTree)->Arg(100)->Arg(10000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_OfstreamSameTrajectoryBytes)->Arg(100)->Arg(10000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ReadMotion)->Arg(100)->Arg(10000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ReadMotionSimdDom)->Arg(100)->Arg(10000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ReadMotionNlohmann)->Arg(100)->Arg(10000)->Unit(benchmark::kMillisecond);
