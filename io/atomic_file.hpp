@@ -25,6 +25,10 @@ class AtomicOutput {
   bool committed_ = false;
 };
 
+/// The extension of the file name in `path`, lower case, with its dot (".step"); "" when
+/// it has none. Output formats are chosen by it.
+std::string lower_extension(const std::string& path);
+
 /// Writes `content` to `path` atomically; throws Errc::invalid_input naming the path.
 void write_file_atomic(const std::string& path, const std::string& content);
 

@@ -44,16 +44,6 @@ std::string escape_xml(const std::string& s) {
   return out;
 }
 
-std::string lower_extension(const std::string& path) {
-  const auto dot = path.find_last_of('.');
-  const auto slash = path.find_last_of('/');
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return {};
-  std::string e = path.substr(dot);
-  std::transform(e.begin(), e.end(), e.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return e;
-}
-
 std::string style_attributes(const Style& s) {
   std::string a = s.cls.empty() ? std::string() : " class=\"" + escape_xml(s.cls) + "\"";
   a += " fill=\"" + (s.fill ? s.fill->hex() : std::string("none")) + "\"";
@@ -81,9 +71,11 @@ std::string Rgb::hex() const {
   return buf;
 }
 
-bool is_figure_path(const std::string& path) {
+void check_figure_path(const std::string& path) {
   const std::string e = lower_extension(path);
-  return e == ".svg" || e == ".png";
+  if (e != ".svg" && e != ".png")
+    throw Error(Errc::invalid_input,
+                "-o " + path + ": expected a figure file ending in .svg or .png");
 }
 
 Canvas::Canvas(int width, int height, Rgb background)
@@ -110,22 +102,21 @@ void Canvas::end_group() {
   --open_groups_;
 }
 
-void Canvas::polyline(std::vector<Eigen::Vector2d> points, const Style& style) {
-  if (points.size() < 2) return;
+void Canvas::add_path(Kind kind, std::vector<Eigen::Vector2d> points, const Style& style) {
+  if (points.size() < (kind == Kind::polygon ? 3u : 2u)) return;  // nothing to draw
   Shape s;
-  s.kind = Kind::polyline;
+  s.kind = kind;
   s.points = std::move(points);
   s.style = style;
   shapes_.push_back(std::move(s));
 }
 
+void Canvas::polyline(std::vector<Eigen::Vector2d> points, const Style& style) {
+  add_path(Kind::polyline, std::move(points), style);
+}
+
 void Canvas::polygon(std::vector<Eigen::Vector2d> points, const Style& style) {
-  if (points.size() < 3) return;
-  Shape s;
-  s.kind = Kind::polygon;
-  s.points = std::move(points);
-  s.style = style;
-  shapes_.push_back(std::move(s));
+  add_path(Kind::polygon, std::move(points), style);
 }
 
 void Canvas::circle(const Eigen::Vector2d& centre, double radius, const Style& style) {
@@ -212,15 +203,11 @@ std::string Canvas::svg() const {
 }
 
 void Canvas::write(const std::string& path) const {
-  const std::string e = lower_extension(path);
-  if (e == ".svg") {
+  check_figure_path(path);
+  if (lower_extension(path) == ".svg")
     write_file_atomic(path, svg());
-  } else if (e == ".png") {
+  else
     write_png(path);
-  } else {
-    throw Error(Errc::invalid_input,
-                "-o " + path + ": expected a figure file ending in .svg or .png");
-  }
 }
 
 void Canvas::write_png(const std::string& path) const {

@@ -69,6 +69,7 @@ class Canvas {
     Anchor anchor = Anchor::start;
     bool bold = false;
   };
+  void add_path(Kind kind, std::vector<Eigen::Vector2d> points, const Style& style);
   void write_png(const std::string& path) const;
 
   int width_, height_;
@@ -78,7 +79,8 @@ class Canvas {
   int open_groups_ = 0;
 };
 
-/// True when `path` ends in .svg or .png (any case): what Canvas::write accepts.
-bool is_figure_path(const std::string& path);
+/// Errc::invalid_input unless `path` ends in .svg or .png (any case): what Canvas::write
+/// accepts, checked by the callers before any work.
+void check_figure_path(const std::string& path);
 
 }  // namespace qmotion::io

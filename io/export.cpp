@@ -29,14 +29,8 @@ using json = nlohmann::json;
 
 enum class Format { json, step, iges, mesh };
 
-std::string lower_ext(const std::string& path) {
-  std::string e = std::filesystem::path(path).extension().string();
-  for (auto& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return e;
-}
-
 Format output_format(const std::string& path, bool allow_stl) {
-  const std::string e = lower_ext(path);
+  const std::string e = lower_extension(path);
   if (e == ".json") return Format::json;
   if (e == ".step" || e == ".stp") return Format::step;
   if (e == ".igs" || e == ".iges") return Format::iges;
@@ -559,7 +553,7 @@ json check_placement(const std::string& file, const Placement& lm,
                      const std::optional<sweep::Profile<double>>& profile,
                      const std::optional<Eigen::Vector3d>& point, int grid) {
   const bool surface = profile.has_value();
-  const std::string e = lower_ext(file);
+  const std::string e = lower_extension(file);
   std::vector<CheckFace> faces;
   int planar_faces = 0;
   std::string file_units = lm.units;

@@ -17,12 +17,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-std::string extension(const std::string& path) {
-  std::string e = std::filesystem::path(path).extension().string();
-  for (auto& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return e;
-}
-
 /// Welds nodes closer than tol (a hash grid of cell tol, the 27 cells around a node).
 class Welder {
  public:
@@ -139,7 +133,7 @@ Eigen::Vector3d normal_of(const Mesh& m, const std::array<int, 3>& t) {
 }  // namespace
 
 bool is_mesh_path(const std::string& path) {
-  const std::string e = extension(path);
+  const std::string e = lower_extension(path);
   return e == ".stl" || e == ".obj" || e == ".ply";
 }
 
@@ -165,7 +159,7 @@ Mesh mesh_shell_within(const sweep::NurbsShell<double>& shell, const MeshOptions
 }
 
 void write_mesh(const std::string& path, const Mesh& m, bool ascii) {
-  const std::string e = extension(path);
+  const std::string e = lower_extension(path);
   std::string out;
   std::ostringstream os;
   os.precision(17);

@@ -231,10 +231,6 @@ std::string lower(std::string s) {
   return s;
 }
 
-std::string extension(const std::string& path) {
-  return lower(std::filesystem::path(path).extension().string());
-}
-
 /// OpenCASCADE's progress, forwarded to io::report_progress under a stage name (ended with
 /// fraction 1 when the indicator goes).
 class SinkIndicator : public Message_ProgressIndicator {
@@ -742,7 +738,7 @@ CadGeometry read_cad(const std::string& path, bool want_surface, const std::stri
     throw Error(Errc::invalid_input, path + ": a file of " + std::to_string(size) +
                                          " bytes (at most " + std::to_string(kMaxFileBytes) + ")");
   quiet_occt();
-  const std::string ext = extension(path);
+  const std::string ext = lower_extension(path);
   const UnitNames u = unit_names(units);
   CadGeometry g;
   TopoDS_Shape shape;

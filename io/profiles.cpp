@@ -1,5 +1,6 @@
 // io/profiles.cpp
 #include <filesystem>
+#include <qmotion/io/atomic_file.hpp>
 #include <qmotion/io/json_number.hpp>
 #include <qmotion/io/nurbs_json.hpp>
 #include <qmotion/io/occt.hpp>
@@ -107,8 +108,7 @@ sweep::Profile<double> read_profile(const std::string& spec, const std::string& 
       throw Error(Errc::invalid_input, where + ": " + e.what());
     }
   }
-  std::string ext = std::filesystem::path(spec).extension().string();
-  for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string ext = lower_extension(spec);
   if (ext == ".step" || ext == ".stp" || ext == ".igs" || ext == ".iges") {
     return wire_profile(read_cad(spec, /*want_surface=*/false, units).wire, spec);
   }

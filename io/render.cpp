@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <functional>
 #include <limits>
+#include <qmotion/io/atomic_file.hpp>
 #include <qmotion/io/export.hpp>
 #include <qmotion/io/json_number.hpp>
 #include <qmotion/io/occt.hpp>
@@ -176,14 +177,6 @@ struct Face {
   double depth = 0;
 };
 
-bool ends_with_stl(const std::string& s) {
-  if (s.size() < 4) return false;
-  std::string e = s.substr(s.size() - 4);
-  std::transform(e.begin(), e.end(), e.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return e == ".stl";
-}
-
 }  // namespace
 
 Eigen::Vector3d parse_view(const std::string& view) {
@@ -238,7 +231,7 @@ Canvas render_figure(const AnyMotion& motion, const RenderOptions& o, RenderResu
   std::vector<std::array<Vector3d, 3>> object_mesh;
   const bool cube = o.object.empty() || o.object == "cube";
   if (!cube && !object_profile) {
-    if (ends_with_stl(o.object))
+    if (lower_extension(o.object) == ".stl")
       object_mesh = read_stl(o.object);
     else
       object_profile = read_profile(o.object, units_of(motion));
@@ -608,9 +601,7 @@ Canvas render_figure(const AnyMotion& motion, const RenderOptions& o, RenderResu
 }
 
 RenderResult render(const AnyMotion& motion, const RenderOptions& options) {
-  if (!is_figure_path(options.output))
-    throw Error(Errc::invalid_input,
-                "-o " + options.output + ": expected a figure file ending in .svg or .png");
+  check_figure_path(options.output);
   RenderResult r;
   const Canvas canvas = render_figure(motion, options, &r);
   canvas.write(options.output);
@@ -935,9 +926,7 @@ Canvas plot_figure(const std::vector<PlotSeries>& series, const PlotOptions& o,
 }
 
 std::vector<PlotSeries> plot(const std::vector<AnyMotion>& motions, const PlotOptions& o) {
-  if (!is_figure_path(o.output))
-    throw Error(Errc::invalid_input,
-                "-o " + o.output + ": expected a figure file ending in .svg or .png");
+  check_figure_path(o.output);
   if (motions.empty()) throw Error(Errc::invalid_input, "plot: no motion given");
   for (const AnyMotion& m : motions)
     if (units_of(m) != units_of(motions.front()))

@@ -25,8 +25,7 @@ constexpr double kPi = 3.14159265358979323846;
 enum class CamFormat { apt, csv, gcode };
 
 CamFormat cam_format(const std::string& path) {
-  std::string e = std::filesystem::path(path).extension().string();
-  for (auto& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string e = lower_extension(path);
   if (e == ".apt" || e == ".cls") return CamFormat::apt;
   if (e == ".csv") return CamFormat::csv;
   if (e == ".nc" || e == ".ngc") return CamFormat::gcode;
