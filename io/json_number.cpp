@@ -449,7 +449,7 @@ bool build(sj::value v, json& out, bool plain) { return walk(v, &out, plain); }
 
 bool check(sj::value v) { return walk(v, nullptr, false); }
 
-bool number(sj::value v, Number& out) {
+bool number(sj::value v, Number& out, bool lean) {
   sj::json_type type;
   if (v.type().get(type)) return false;
   if (type == sj::json_type::string) {
@@ -471,7 +471,18 @@ bool number(sj::value v, Number& out) {
       out = Number{std::to_string(n.get_uint64()), static_cast<double>(n.get_uint64())};
       return true;
     default: {
-      out = Number{std::string(trimmed(v.raw_json_token())), n.get_double()};
+      const std::string_view raw = trimmed(v.raw_json_token());
+      const double d = n.get_double();
+      if (lean) {
+        char buf[32];
+        const auto r = std::to_chars(buf, buf + sizeof buf, d);
+        if (std::string_view(buf, static_cast<std::size_t>(r.ptr - buf)) == raw) {
+          out.text.clear();
+          out.value = d;
+          return true;
+        }
+      }
+      out = Number{std::string(raw), d};
       return true;
     }
   }

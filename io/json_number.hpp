@@ -16,10 +16,15 @@ namespace qmotion::io {
 inline constexpr std::size_t kMaxNumberChars = 1000;
 
 struct Number {
-  std::string text;  ///< canonical source text: integer, decimal or "p/q"
+  /// Canonical source text: integer, decimal or "p/q". Empty when the source text is the
+  /// shortest round-trip text of `value` (the motion reader leaves it so for control
+  /// points, 5.6 x 10^5 numbers in a 10^4-pose motion): read it through source().
+  std::string text;
   double value = 0;  ///< nearest double
 
   static Number from_double(double v);
+  /// The source text: `text`, or the shortest round-trip text of `value` when it is empty.
+  std::string source() const { return text.empty() ? from_double(value).text : text; }
 };
 
 /// Parses JSON text. Floating-point literals become JSON strings holding their exact source

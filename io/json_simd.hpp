@@ -35,7 +35,9 @@ bool check(sj::value v);
 
 /// The number at v (a JSON number, or a string holding a plain decimal literal) with its
 /// source text, as read_number would read it. False for anything else (including "p/q"
-/// strings): the caller falls back to the DOM reader.
-bool number(sj::value v, Number& out);
+/// strings): the caller falls back to the DOM reader. With `lean`, a decimal whose text is
+/// the shortest round-trip text of its value is kept without its text (Number::source()
+/// gives it back).
+bool number(sj::value v, Number& out, bool lean = false);
 
 }  // namespace qmotion::io::simd

@@ -42,7 +42,7 @@ json interpolation_residuals(const kernel::QMotion<Scalar>& m,
           read_number(params[i], f.source + ": method.parameters[" + std::to_string(i) + "]");
 #ifdef QMOTION_WITH_CGAL
       if constexpr (kernel::is_exact_v<Scalar>) {
-        t = exact_from_text(n.text);
+        t = exact_from_text(n.source());
       } else {
         t = n.value;
       }
@@ -121,11 +121,13 @@ json motion_info(const MotionFile& f, bool exact) {
 #endif
   out["interpolation_residual"] = res;
   out["poles"] = kernel::find_poles(m);
-  if (!f.method.is_null()) {
-    json method = f.method;
-    for (const char* bulky : {"input_poses", "rotation_control_points",
-                              "translation_control_points", "translation2_control_points"})
-      method.erase(bulky);
+  if (f.method.is_object()) {
+    // The record without its bulky members (copied member by member: the input poses and
+    // factor control points of a 10^4-pose motion are 10^5 values not to copy).
+    json method = json::object();
+    for (const auto& [key, value] : f.method.items())
+      if (key != "input_poses" && key.find("_control_points") == std::string::npos)
+        method[key] = value;
     out["method"] = method;
   }
   return out;
