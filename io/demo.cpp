@@ -75,9 +75,8 @@ json write_demo(const std::string& dir) {
   InterpolateOptions opt;  // elliptic + TR (Algorithm 1), the poses' own t
   opt.form = "bezier";
   const InterpolatedMotion interpolated = interpolate(set, opt);
-  const json& motion_doc = interpolated.document;
   const std::string& summary = interpolated.summary;
-  write_file_atomic((tmp / "motion.json").string(), motion_doc.dump(1) + "\n");
+  write_file_atomic((tmp / "motion.json").string(), interpolated.text());
   kernel::Motion<double> lm = interpolated.motion;
   lm.name = "motion.json";  // what the files' headers cite
   // The paper's Figure 5 idea: a parabola of the moving space swept by the motion.

@@ -31,8 +31,10 @@ InterpolatedMotion finish(kernel::Motion<Scalar> m, const std::string& param, co
      << kernel::construction_order(p.translation, p.rotation_degree, p.translation_degree,
                                    std::max(p.translation_degree2, 0))
      << ", max residual " << p.max_residual();
-  return InterpolatedMotion{kernel::to_double(m), motion_document(m, poses_to_json(set)), os.str(),
-                            kernel::find_poles(m.curve)};
+  InterpolatedMotion out{kernel::to_double(m), os.str(), kernel::find_poles(m.curve), set, nullptr};
+  if constexpr (kernel::is_exact_v<Scalar>)
+    out.exact_document = motion_document(m, poses_to_json(set));
+  return out;
 }
 
 template <typename Scalar>
@@ -193,6 +195,16 @@ InterpolatedMotion interpolate(const PoseSet& set, const InterpolateOptions& arg
 #endif
   }
   return finish(run(to_poses_double(set), r.t, r.form, r.opt, r.sopt), rule, set);
+}
+
+json InterpolatedMotion::document() const {
+  if (!exact_document.is_null()) return exact_document;
+  return motion_document(motion, poses_to_json(input));
+}
+
+std::string InterpolatedMotion::text() const {
+  if (!exact_document.is_null()) return exact_document.dump(1) + "\n";
+  return motion_json_text(motion, &input);
 }
 
 }  // namespace qmotion::io

@@ -24,14 +24,22 @@ struct InterpolateOptions {
   bool exact = false;                 ///< CGAL::Exact_rational (quaternion rotations)
 };
 
-/// A new motion: the motion value, its file document (SPEC §5: the curve, the factors it
-/// is the product of, the method with the input poses as given), a one-line summary, and the poles
-/// on its interval (zeros of the rotational part; trajectories cannot be exported through them).
+/// A new motion: the motion value, a one-line summary, the poles on its interval (zeros of
+/// the rotational part; trajectories cannot be exported through them), and what its file
+/// needs (SPEC §5: the curve, the factors it is the product of, the method with the input
+/// poses as given). The file is made on demand: document() as a tree, text() streamed.
 struct InterpolatedMotion {
   kernel::Motion<double> motion;  ///< the motion (converted to double under --exact)
-  nlohmann::json document;        ///< its file; exact numbers under --exact
   std::string summary;
   std::vector<double> poles;
+  PoseSet input;                  ///< the poses as given, written as the method's input_poses
+  nlohmann::json exact_document;  ///< under --exact: the file with exact "p/q" numbers; else null
+
+  /// The motion file's document; exact numbers under --exact.
+  nlohmann::json document() const;
+  /// The same document as JSON text (what `qmotion interpolate` writes): streamed without a
+  /// tree (motion_json_text) for double motions.
+  std::string text() const;
 };
 
 /// The parametrisation rule `name` (`--param`) for the poses; empty: `given` when every

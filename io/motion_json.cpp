@@ -1,6 +1,7 @@
 // io/motion_json.cpp
 #include <qmotion/io/atomic_file.hpp>
 #include <qmotion/io/json_simd.hpp>
+#include <qmotion/io/json_text.hpp>
 #include <qmotion/io/motion_json.hpp>
 #include <qmotion/io/poses.hpp>
 #include <qmotion/kernel/error.hpp>
@@ -177,6 +178,68 @@ json method_json(const kernel::Motion<Scalar>& m, const json& input_poses, NumOu
   return method;
 }
 
+/// method_json(m, input_poses) streamed for a double motion; `input`, when not null, is
+/// written as the input poses (else the provenance's poses).
+void method_text(JsonText& t, const kernel::Motion<double>& m, const PoseSet* input, int depth) {
+  JsonText::Members members;
+  auto add = [&](const char* key, std::function<void(int)> f) {
+    members.emplace_back(key, std::move(f));
+  };
+  auto knots = [&](const std::vector<double>& k) { return [&t, &k](int) { t.numbers(k); }; };
+  if (m.provenance) {
+    const auto& p = *m.provenance;
+    add("form", [&t, &p](int) { t.string(kernel::to_string(p.form)); });
+    add("rotation", [&t, &p](int) { t.string(kernel::to_string(p.rotation)); });
+    add("translation", [&t, &p](int) { t.string(kernel::to_string(p.translation)); });
+    if (!p.param.empty()) add("param", [&t, &p](int) { t.string(p.param); });
+    add("exact", [&t](int) { t.boolean(false); });
+    add("input_poses", [&t, &p, &m, input](int d) {
+      if (input) {
+        poses_text(t, *input, d);
+      } else {
+        poses_text(t, p.poses, m.units, d);
+      }
+    });
+    add("parameters", knots(p.parameters));
+    add("rotation_degree", [&t, &p](int) { t.integer(p.rotation_degree); });
+    if (p.translation == kernel::TranslationMethod::trt) {
+      const auto pair = [&t, &p](int) {
+        t.out += '[';
+        t.integer(p.translation_degree);
+        t.out += ',';
+        t.integer(p.translation_degree2);
+        t.out += ']';
+      };
+      add("translation_degree", pair);
+      add("trt_degrees", pair);
+    } else {
+      add("translation_degree", [&t, &p](int) { t.integer(p.translation_degree); });
+    }
+    add("max_interpolation_residual", [&t, &p](int) { t.number(p.max_residual()); });
+  }
+  if (m.factors) {
+    const auto& f = *m.factors;
+    if (!m.provenance) add("translation", [&t, &f](int) { t.string(kernel::to_string(f.method)); });
+    const bool spline = m.curve.basis == kernel::Basis::bspline;
+    add("rotation_control_points", [&t, &f](int d) {
+      const auto& c = f.rotation.ctrl();
+      t.lines(c.size(), d, [&](std::size_t i) {
+        t.point(std::array<double, 4>{c[i].w(), c[i].x(), c[i].y(), c[i].z()}, 4);
+      });
+    });
+    if (spline) add("rotation_knots", knots(f.rotation.knots()));
+    auto vec = [&](const std::string& name, const kernel::BSpline<Eigen::Vector3d>& v) {
+      members.emplace_back(name + "_control_points", [&t, &v](int d) {
+        t.lines(v.ctrl().size(), d, [&](std::size_t i) { t.point(v.ctrl()[i], 3); });
+      });
+      if (spline) members.emplace_back(name + "_knots", knots(v.knots()));
+    };
+    vec("translation", f.translation);
+    if (f.translation2) vec("translation2", *f.translation2);
+  }
+  t.object(std::move(members), depth);
+}
+
 /// Refuses a recorded method field that is present but malformed.
 [[noreturn]] void bad_method_field(const std::string& source, const std::string& field,
                                    const std::string& expected) {
@@ -253,8 +316,8 @@ std::optional<sweep::MotionFactors<double>> factors_double(const MotionFile& f,
 #ifdef QMOTION_WITH_CGAL
 std::optional<sweep::MotionFactors<kernel::Rational>> factors_exact(
     const MotionFile& f, const kernel::QMotion<kernel::Rational>& m) {
-  return read_factors<kernel::Rational>(f, m,
-                                        [](const Number& n) { return exact_from_text(n.text); });
+  return read_factors<kernel::Rational>(
+      f, m, [](const Number& n) { return exact_from_text(n.source()); });
 }
 #endif
 
@@ -285,11 +348,12 @@ void finish_motion(MotionFile& f, bool knots_given) {
   for (std::size_t i = f.degree + 1; i + f.degree + 1 < kv.size(); ++i)
     if (kv[i] == kv[i + f.degree])
       throw Error(Errc::invalid_input,
-                  source + ": knots: knot " + f.knots[i].text +
+                  source + ": knots: knot " + f.knots[i].source() +
                       " has multiplicity above the degree (the motion would be discontinuous)");
   if (kv.front() != range[0].value || kv.back() != range[1].value)
-    throw Error(Errc::invalid_input, source + ": param_range [" + range[0].text + ", " +
-                                         range[1].text + "] differs from the knot vector's ends");
+    throw Error(Errc::invalid_input, source + ": param_range [" + range[0].source() + ", " +
+                                         range[1].source() +
+                                         "] differs from the knot vector's ends");
   bool real_nonzero = false;
   for (const auto& c : f.ctrl)
     for (std::size_t k = 0; k < 4; ++k) real_nonzero = real_nonzero || c[k].value != 0.0;
@@ -354,8 +418,12 @@ std::optional<MotionFile> parse_motion_fast(const std::string& text, const std::
       f.units = std::string(u);
     } else if (key == "control_points") {
       sj::array rows;
-      if (v.get_array().get(rows)) return std::nullopt;
+      std::size_t count = 0;
+      if (v.get_array().get(rows) || rows.count_elements().get(count) ||
+          count > kMaxMotionControlPoints)
+        return std::nullopt;
       f.ctrl.clear();
+      f.ctrl.reserve(count);  // no regrowth: the rows' numbers are moved, not copied twice
       for (auto r : rows) {
         sj::array row;
         if (r.get_array().get(row) || f.ctrl.size() >= kMaxMotionControlPoints) return std::nullopt;
@@ -363,7 +431,7 @@ std::optional<MotionFile> parse_motion_fast(const std::string& text, const std::
         std::size_t k = 0;
         for (auto e : row) {
           sj::value ev;
-          if (k == 8 || e.get(ev) || !simd::number(ev, c[k++])) return std::nullopt;
+          if (k == 8 || e.get(ev) || !simd::number(ev, c[k++], /*lean=*/true)) return std::nullopt;
         }
         if (k != 8) return std::nullopt;
       }
@@ -515,13 +583,40 @@ json motion_document(const kernel::Motion<double>& m, const json& input_poses) {
                         m.units);
 }
 
+std::string motion_json_text(const kernel::Motion<double>& m, const PoseSet* input_poses) {
+  JsonText t;
+  const auto& ctrl = m.curve.curve.ctrl();
+  t.out.reserve(4096 + ctrl.size() * 200 + (input_poses ? input_poses->poses.size() * 200 : 0));
+  const auto& knots = m.curve.curve.knots();
+  JsonText::Members members{
+      {"type", [&t](int) { t.string("q-motion"); }},
+      {"basis",
+       [&t, &m](int) { t.string(m.curve.basis == kernel::Basis::bezier ? "bezier" : "bspline"); }},
+      {"degree", [&t, &m](int) { t.integer(m.degree()); }},
+      {"knots", [&t, &knots](int) { t.numbers(knots); }},
+      {"param_range",
+       [&t, &m](int) {
+         t.point(std::array<double, 2>{m.a(), m.b()}, 2);
+       }},
+      {"units", [&t, &m](int) { t.string(m.units); }},
+      {"control_points", [&t, &ctrl](int d) {
+         t.lines(ctrl.size(), d, [&](std::size_t i) { t.point(ctrl[i], 8); });
+       }}};
+  if (m.provenance || m.factors)
+    members.emplace_back("method", [&](int d) { method_text(t, m, input_poses, d); });
+  t.object(std::move(members), 0);
+  t.out += '\n';
+  return std::move(t.out);
+}
+
 void save_motion(const kernel::Motion<double>& m, const std::string& path) {
-  write_file_atomic(path, motion_document(m).dump(1) + "\n");
+  write_file_atomic(path, motion_json_text(m));
 }
 
 #ifdef QMOTION_WITH_CGAL
 kernel::QMotion<kernel::Rational> to_motion_exact(const MotionFile& f) {
-  return build_motion<kernel::Rational>(f, [](const Number& n) { return exact_from_text(n.text); });
+  return build_motion<kernel::Rational>(
+      f, [](const Number& n) { return exact_from_text(n.source()); });
 }
 
 json motion_to_json(const kernel::QMotion<kernel::Rational>& m, const json& method,

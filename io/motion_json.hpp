@@ -3,6 +3,7 @@
 #include <array>
 #include <nlohmann/json.hpp>
 #include <qmotion/io/json_number.hpp>
+#include <qmotion/io/poses.hpp>
 #include <qmotion/kernel/motion.hpp>
 #include <qmotion/kernel/motion_value.hpp>
 #include <qmotion/sweep/factors.hpp>
@@ -78,7 +79,11 @@ kernel::Motion<double> load_motion(const std::string& path);
 /// poses as the user gave them: rotation matrices, axis-angle, exact text).
 nlohmann::json motion_document(const kernel::Motion<double>& m,
                                const nlohmann::json& input_poses = nullptr);
-/// Writes motion_document(m) to path atomically (two-space JSON).
+/// motion_document(m, input_poses ? poses_to_json(*input_poses) : null) as JSON text,
+/// streamed (no tree): one control point a line, shortest round-trip numbers, members in
+/// the tree's sorted order. What save_motion and `qmotion interpolate` write.
+std::string motion_json_text(const kernel::Motion<double>& m, const PoseSet* input_poses = nullptr);
+/// Writes motion_json_text(m) to path atomically.
 void save_motion(const kernel::Motion<double>& m, const std::string& path);
 
 #ifdef QMOTION_WITH_CGAL

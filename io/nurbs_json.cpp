@@ -1,9 +1,6 @@
 // io/nurbs_json.cpp
-#include <algorithm>
-#include <charconv>
-#include <cmath>
-#include <functional>
 #include <qmotion/io/json_number.hpp>
+#include <qmotion/io/json_text.hpp>
 #include <qmotion/io/nurbs_json.hpp>
 #include <qmotion/kernel/error.hpp>
 
@@ -20,91 +17,16 @@ std::vector<double> read_array(const json& j, const std::string& where) {
   return v;
 }
 
-/// A streaming JSON writer for the NURBS documents: members in sorted order, one pole a
-/// line, shortest round-trip numbers.
-class Text {
+/// The NURBS documents streamed: one pole a line.
+class Text : public JsonText {
  public:
-  std::string out;
-
-  void number(double v) {
-    if (!std::isfinite(v)) {
-      out += "null";
-      return;
-    }
-    if (v == 0 && std::signbit(v)) {  // "-0" would read back as the integer 0
-      out += "-0.0";
-      return;
-    }
-    char buf[32];
-    const auto r = std::to_chars(buf, buf + sizeof buf, v);
-    out.append(buf, r.ptr);
-  }
-  void integer(long long v) { out += std::to_string(v); }
-  void numbers(const std::vector<double>& v) {
-    out += '[';
-    for (std::size_t i = 0; i < v.size(); ++i) {
-      if (i) out += ',';
-      number(v[i]);
-    }
-    out += ']';
-  }
-  void point(const Eigen::Vector3d& p) {
-    out += '[';
-    number(p(0));
-    out += ',';
-    number(p(1));
-    out += ',';
-    number(p(2));
-    out += ']';
-  }
-  void indent(int depth) { out.append(static_cast<std::size_t>(depth), ' '); }
-  /// An array of `n` items, each on its own line at depth + 1.
-  template <typename F>
-  void lines(std::size_t n, int depth, F item) {
-    if (n == 0) {
-      out += "[]";
-      return;
-    }
-    out += "[\n";
-    for (std::size_t i = 0; i < n; ++i) {
-      indent(depth + 1);
-      item(i);
-      out += i + 1 < n ? ",\n" : "\n";
-    }
-    indent(depth);
-    out += ']';
-  }
-  /// An object whose members are written by the functions, in sorted key order; `extra`'s
-  /// members join them (dumped by nlohmann, small).
-  void object(std::vector<std::pair<std::string, std::function<void(int)>>> members,
-              const json& extra, int depth) {
-    for (const auto& [k, v] : extra.items()) {
-      for (const auto& m : members)
-        if (m.first == k) throw Error(Errc::internal, "NURBS JSON: member '" + k + "' twice");
-      json copy = v;
-      members.emplace_back(k, [this, copy](int) { out += copy.dump(); });
-    }
-    std::sort(members.begin(), members.end(),
-              [](const auto& a, const auto& b) { return a.first < b.first; });
-    out += "{\n";
-    for (std::size_t i = 0; i < members.size(); ++i) {
-      indent(depth + 1);
-      out += json(members[i].first).dump();
-      out += ": ";
-      members[i].second(depth + 1);
-      out += i + 1 < members.size() ? ",\n" : "\n";
-    }
-    indent(depth);
-    out += '}';
-  }
-
   void curve(const sweep::NurbsCurve<double>& c, const json& extra, int depth) {
     object({{"type", [this](int) { out += "\"nurbs_curve\""; }},
             {"degree", [this, &c](int) { integer(c.degree); }},
             {"knots", [this, &c](int) { numbers(c.knots); }},
             {"control_points",
              [this, &c](int d) {
-               lines(c.points.size(), d, [&](std::size_t i) { point(c.points[i]); });
+               lines(c.points.size(), d, [&](std::size_t i) { point(c.points[i], 3); });
              }},
             {"weights", [this, &c](int) { numbers(c.weights); }}},
            extra, depth);
@@ -119,7 +41,7 @@ class Text {
             {"control_points",
              [this, &s](int d) {
                lines(s.points.size(), d, [&](std::size_t i) {
-                 lines(s.points[i].size(), d + 1, [&](std::size_t j) { point(s.points[i][j]); });
+                 lines(s.points[i].size(), d + 1, [&](std::size_t j) { point(s.points[i][j], 3); });
                });
              }},
             {"weights",

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <qmotion/io/json_simd.hpp>
+#include <qmotion/io/json_text.hpp>
 #include <qmotion/io/poses.hpp>
 #include <qmotion/kernel/error.hpp>
 #include <sstream>
@@ -189,7 +191,137 @@ PoseSet parse_poses_json_value(const json& doc, const std::string& source) {
   return set;
 }
 
+namespace {
+namespace sj = simd::sj;
+
+/// Reads an array of exactly `n` numbers into `out`; false for anything else.
+bool fast_numbers(sj::value v, std::size_t n, std::vector<Number>& out) {
+  sj::array a;
+  if (v.get_array().get(a)) return false;
+  std::size_t k = 0;
+  for (auto e : a) {
+    sj::value ev;
+    if (k == n || e.get(ev) || !simd::number(ev, out.emplace_back())) return false;
+    ++k;
+  }
+  return k == n;
+}
+
+/// The rotation object: exactly one of its three forms, each key once; false otherwise.
+bool fast_rotation(sj::value v, RotationInput& out) {
+  sj::object r;
+  if (v.get_object().get(r)) return false;
+  int forms = 0;
+  for (auto field : r) {
+    std::string_view key;
+    if (field.unescaped_key().get(key)) return false;
+    sj::value fv = field.value();
+    if (key == "quaternion") {
+      out.kind = RotationInput::Kind::quaternion;
+      if (++forms > 1 || !fast_numbers(fv, 4, out.values)) return false;
+    } else if (key == "matrix") {
+      out.kind = RotationInput::Kind::matrix;
+      sj::array rows;
+      if (++forms > 1 || fv.get_array().get(rows)) return false;
+      std::size_t k = 0;
+      for (auto row : rows) {
+        sj::value rv;
+        if (k++ == 3 || row.get(rv) || !fast_numbers(rv, 3, out.values)) return false;
+      }
+      if (k != 3) return false;
+    } else if (key == "axis_angle") {
+      out.kind = RotationInput::Kind::axis_angle;
+      sj::object aa;
+      if (++forms > 1 || fv.get_object().get(aa)) return false;
+      bool axis = false, angle = false;
+      Number angle_deg;
+      for (auto af : aa) {
+        std::string_view ak;
+        if (af.unescaped_key().get(ak)) return false;
+        sj::value av = af.value();
+        if (ak == "axis") {
+          if (axis || !fast_numbers(av, 3, out.values)) return false;
+          axis = true;
+        } else if (ak == "angle_deg") {
+          if (angle || !simd::number(av, angle_deg)) return false;
+          angle = true;
+        } else if (!simd::check(av)) {
+          return false;
+        }
+      }
+      if (!axis || !angle) return false;
+      out.values.push_back(std::move(angle_deg));
+    } else if (!simd::check(fv)) {
+      return false;
+    }
+  }
+  return forms == 1;
+}
+
+}  // namespace
+
+std::optional<PoseSet> parse_poses_fast(const std::string& text, const std::string& source) {
+  simd::Document d(text);
+  sj::object root;
+  if (!d.ok || d.doc.get_object().get(root)) return std::nullopt;
+  PoseSet set;
+  set.source = source;
+  bool units = false, poses = false;
+  for (auto field : root) {
+    std::string_view key;
+    if (field.unescaped_key().get(key)) return std::nullopt;
+    sj::value v = field.value();
+    if (key == "units") {
+      std::string_view u;
+      if (units || v.get_string().get(u) || !is_known_unit(std::string(u))) return std::nullopt;
+      set.units = std::string(u);
+      units = true;
+    } else if (key == "poses") {
+      sj::array a;
+      std::size_t count = 0;
+      if (poses || v.get_array().get(a) || a.count_elements().get(count) || count > kMaxPoses)
+        return std::nullopt;
+      set.poses.reserve(count);
+      for (auto e : a) {
+        sj::object p;
+        if (e.get_object().get(p)) return std::nullopt;
+        PoseInput& in = set.poses.emplace_back();
+        bool t = false, position = false, rotation = false;
+        for (auto pf : p) {
+          std::string_view pk;
+          if (pf.unescaped_key().get(pk)) return std::nullopt;
+          sj::value pv = pf.value();
+          if (pk == "t") {
+            bool null = false;
+            if (t || pv.is_null().get(null)) return std::nullopt;
+            if (!null && !simd::number(pv, in.t.emplace())) return std::nullopt;
+            t = true;
+          } else if (pk == "position") {
+            std::vector<Number> xyz;
+            if (position || !fast_numbers(pv, 3, xyz)) return std::nullopt;
+            std::move(xyz.begin(), xyz.end(), in.position.begin());
+            position = true;
+          } else if (pk == "rotation") {
+            if (rotation || !fast_rotation(pv, in.rotation)) return std::nullopt;
+            rotation = true;
+          } else if (!simd::check(pv)) {
+            return std::nullopt;
+          }
+        }
+        if (!position || !rotation) return std::nullopt;
+      }
+      poses = true;
+    } else if (!simd::check(v)) {
+      return std::nullopt;
+    }
+  }
+  if (!poses || !d.at_end()) return std::nullopt;
+  validate_set(set);
+  return set;
+}
+
 PoseSet parse_poses_json(const std::string& text, const std::string& source) {
+  if (auto set = parse_poses_fast(text, source)) return std::move(*set);
   return parse_poses_json_value(parse_json(text, source), source);
 }
 
@@ -336,14 +468,99 @@ PoseSet with_quaternion_rotations(const PoseSet& set, std::vector<std::size_t>* 
 }
 #endif
 
+namespace {
+/// Whether a number is written as its source text (a string): a decimal of at most 15
+/// digits survives the trip through double (shortest round-trip printing); anything
+/// longer, and every "p/q", keeps its text.
+bool keeps_text(const Number& n) {
+  const auto digits = std::count_if(n.text.begin(), n.text.end(), [](char c) {
+    return std::isdigit(static_cast<unsigned char>(c));
+  });
+  return n.text.find('/') != std::string::npos || digits > 15;
+}
+
+void number_text(JsonText& t, const Number& n) {
+  if (keeps_text(n))
+    t.string(n.text);
+  else
+    t.number(n.value);
+}
+
+/// The poses array, one pose a line ({"position","rotation","t"} in sorted order).
+template <typename P, typename Write>
+void pose_lines(JsonText& t, const std::vector<P>& poses, const std::string& units, int depth,
+                Write write) {
+  t.object(
+      {{"poses", [&](int d) { t.lines(poses.size(), d, [&](std::size_t i) { write(poses[i]); }); }},
+       {"units", [&](int) { t.string(units); }}},
+      depth);
+}
+}  // namespace
+
+void poses_text(JsonText& t, const PoseSet& set, int depth) {
+  auto nums = [&t](const auto* v, std::size_t n) {
+    t.out += '[';
+    for (std::size_t i = 0; i < n; ++i) {
+      if (i) t.out += ',';
+      number_text(t, v[i]);
+    }
+    t.out += ']';
+  };
+  pose_lines(t, set.poses, set.units, depth, [&](const PoseInput& p) {
+    t.out += "{\"position\":";
+    nums(p.position.data(), 3);
+    t.out += ",\"rotation\":{";
+    const auto& v = p.rotation.values;
+    switch (p.rotation.kind) {
+      case RotationInput::Kind::quaternion:
+        t.out += "\"quaternion\":";
+        nums(v.data(), v.size());
+        break;
+      case RotationInput::Kind::matrix:
+        t.out += "\"matrix\":[";
+        for (std::size_t r = 0; r < 3; ++r) {
+          if (r) t.out += ',';
+          nums(v.data() + 3 * r, 3);
+        }
+        t.out += ']';
+        break;
+      case RotationInput::Kind::axis_angle:
+        t.out += "\"axis_angle\":{\"angle_deg\":";
+        number_text(t, v[3]);
+        t.out += ",\"axis\":";
+        nums(v.data(), 3);
+        t.out += '}';
+        break;
+    }
+    t.out += '}';
+    if (p.t) {
+      t.out += ",\"t\":";
+      number_text(t, *p.t);
+    }
+    t.out += '}';
+  });
+}
+
+void poses_text(JsonText& t, const std::vector<Pose<double>>& poses, const std::string& units,
+                int depth) {
+  pose_lines(t, poses, units, depth, [&](const Pose<double>& p) {
+    t.out += "{\"position\":";
+    t.point(p.position, 3);
+    t.out += ",\"rotation\":{\"quaternion\":";
+    t.point(std::array<double, 4>{p.rotation.w(), p.rotation.x(), p.rotation.y(), p.rotation.z()},
+            4);
+    t.out += '}';
+    if (p.t) {
+      t.out += ",\"t\":";
+      t.number(*p.t);
+    }
+    t.out += '}';
+  });
+}
+
 json poses_to_json(const PoseSet& set) {
-  // A decimal of at most 15 digits survives the trip through double (shortest round-trip
-  // printing); anything longer, and every "p/q", keeps its text as a string.
   auto num = [](const Number& n) -> json {
-    const auto digits = std::count_if(n.text.begin(), n.text.end(), [](char c) {
-      return std::isdigit(static_cast<unsigned char>(c));
-    });
-    if (n.text.find('/') != std::string::npos || digits > 15) return n.text;
+    if (keeps_text(n)) return n.text;
     return n.value;
   };
   json poses = json::array();

@@ -51,6 +51,11 @@ using Pose = kernel::Pose<Scalar>;
 PoseSet read_poses(const std::string& path);
 /// Parses pose JSON (SPEC §5); `source` names the input in messages.
 PoseSet parse_poses_json(const std::string& text, const std::string& source);
+/// The fast path of parse_poses_json: the file read by simdjson without a document tree
+/// (a 10^4-pose file is 10^5 numbers); std::nullopt as soon as anything is unusual (a
+/// missing or repeated field, an exact "p/q" number, invalid JSON), for the tree reader to
+/// read and word. Throws the set's checks, which both readers share.
+std::optional<PoseSet> parse_poses_fast(const std::string& text, const std::string& source);
 /// The same for an already parsed document (e.g. the poses a motion file records).
 PoseSet parse_poses_json_value(const nlohmann::json& doc, const std::string& source);
 /// Parses pose CSV with header t,x,y,z,qw,qx,qy,qz (t optional; blank lines and lines
@@ -77,6 +82,13 @@ nlohmann::json poses_to_json(const PoseSet& set);
 
 /// Poses in kernel numbers as pose JSON (SPEC §5): quaternion rotations, t when set.
 nlohmann::json poses_to_json(const std::vector<Pose<double>>& poses, const std::string& units);
+
+class JsonText;
+/// poses_to_json(set) streamed into `t` (no tree) at nesting `depth`, one pose a line.
+void poses_text(JsonText& t, const PoseSet& set, int depth);
+/// poses_to_json(poses, units) streamed likewise.
+void poses_text(JsonText& t, const std::vector<Pose<double>>& poses, const std::string& units,
+                int depth);
 
 /// Length units accepted in files.
 bool is_known_unit(const std::string& unit);

@@ -45,12 +45,13 @@ struct PyMotion {
   qm::io::MotionFile file;
   qm::kernel::Motion<double> motion;
   json document;
+  std::string text;  ///< the file as `qmotion interpolate` writes it; empty: document.dump(1)
 };
 
-PyMotion make_motion(json document, const std::string& source) {
+PyMotion make_motion(json document, const std::string& source, std::string text = {}) {
   qm::io::MotionFile file = qm::io::parse_motion(document, source);
   qm::kernel::Motion<double> motion = qm::io::to_motion(file);
-  return PyMotion{std::move(file), std::move(motion), std::move(document)};
+  return PyMotion{std::move(file), std::move(motion), std::move(document), std::move(text)};
 }
 
 /// The provenance as a dict (None for a hand-written motion).
@@ -404,10 +405,11 @@ PYBIND11_MODULE(qmotion, m) {
       .def(
           "save",
           [](const PyMotion& p, const std::string& path) {
-            qm::io::write_file_atomic(path, p.document.dump(1) + "\n");
+            qm::io::write_file_atomic(path, p.text.empty() ? p.document.dump(1) + "\n" : p.text);
           },
           py::arg("path"),
-          "Writes the motion file, byte for byte what `qmotion interpolate` writes");
+          "Writes the motion file: byte for byte what `qmotion interpolate` writes, or, for a "
+          "loaded motion, the file as it was read");
 
   m.def(
       "load",
@@ -422,7 +424,9 @@ PYBIND11_MODULE(qmotion, m) {
         std::stringstream text;
         text << in.rdbuf();
         json document = json::parse(text.str());  // as written (numbers as numbers)
-        return py::cast(PyMotion{std::move(file), std::move(motion), std::move(document)});
+        // save() writes the file back as it was read.
+        return py::cast(
+            PyMotion{std::move(file), std::move(motion), std::move(document), text.str()});
       },
       py::arg("path"),
       "Reads a motion file written by `qmotion interpolate`, `qmotion qspline` or `save`: a "
@@ -446,7 +450,7 @@ PYBIND11_MODULE(qmotion, m) {
         }
         o.exact = exact;
         auto r = qm::io::interpolate(to_poses(poses, units), o);
-        return make_motion(std::move(r.document), "interpolate()");
+        return make_motion(r.document(), "interpolate()", r.text());
       },
       py::arg("poses"), py::arg("rotation") = "elliptic", py::arg("translation") = "tr",
       py::arg("form") = "", py::arg("param") = "", py::arg("degree") = -1,

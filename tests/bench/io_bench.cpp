@@ -48,7 +48,7 @@ const std::string& motion_text(int n) {
   if (s.empty()) {
     io::InterpolateOptions opt;
     opt.form = "bspline";
-    s = io::interpolate(io::parse_poses_json(helix_poses(n), "helix"), opt).document.dump(1);
+    s = io::interpolate(io::parse_poses_json(helix_poses(n), "helix"), opt).text();
   }
   return s;
 }
@@ -87,6 +87,19 @@ void BM_WriteMotion(benchmark::State& state) {  // motion value to file (qmotion
   std::size_t bytes = 0;
   for (auto _ : state) {
     io::save_motion(m, path);
+    bytes = io::read_text_file(path).size();
+  }
+  std::remove(path.c_str());
+  state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations() * bytes));
+}
+
+void BM_WriteMotionTree(benchmark::State& state) {  // before: nlohmann's tree, dumped
+  const std::string& text = motion_text(static_cast<int>(state.range(0)));
+  const auto m = io::to_motion(io::parse_motion_text(text, "m.json"));
+  const std::string path = "bench_io_motion_tree.json";
+  std::size_t bytes = 0;
+  for (auto _ : state) {
+    io::write_file_atomic(path, io::motion_document(m).dump(1) + "\n");
     bytes = io::read_text_file(path).size();
   }
   std::remove(path.c_str());
@@ -163,5 +176,6 @@ BENCHMARK(BM_ReadMotionSimdDom)->Arg(100)->Arg(10000)->Unit(benchmark::kMillisec
 BENCHMARK(BM_ReadMotionNlohmann)->Arg(100)->Arg(10000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Info)->Arg(100)->Arg(10000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WriteMotion)->Arg(100)->Arg(10000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_WriteMotionTree)->Arg(100)->Arg(10000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_OfstreamSameBytes)->Arg(100)->Arg(10000)->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();
