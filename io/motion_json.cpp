@@ -18,8 +18,10 @@ using json = nlohmann::json;
 template <typename Scalar, typename Conv>
 kernel::QMotion<Scalar> build_motion(const MotionFile& f, Conv conv) {
   std::vector<Scalar> knots;
+  knots.reserve(f.knots.size());
   for (const auto& k : f.knots) knots.push_back(conv(k));
   std::vector<kernel::DualQuaternion<Scalar>> ctrl;
+  ctrl.reserve(f.ctrl.size());
   for (const auto& c : f.ctrl) {
     kernel::DualQuaternion<Scalar> q;
     for (int i = 0; i < 8; ++i) q[i] = conv(c[static_cast<std::size_t>(i)]);

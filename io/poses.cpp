@@ -175,6 +175,7 @@ PoseSet parse_poses_json_value(const json& doc, const std::string& source) {
   const json& poses = require(doc, "poses", source);
   if (!poses.is_array()) throw Error(Errc::invalid_input, source + ": poses: expected an array");
   if (poses.size() > kMaxPoses) too_many_poses(source);
+  set.poses.reserve(poses.size());
   for (std::size_t i = 0; i < poses.size(); ++i) {
     const json& p = poses[i];
     const std::string where = pose_where(source, i, "");
