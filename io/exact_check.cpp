@@ -178,8 +178,7 @@ json check_exact(const std::string& motion_path, const std::optional<Eigen::Vect
             " segments, " + std::to_string(prov.poses.size()) + " poses)");
 
   std::vector<std::size_t> rounded;
-  const PoseSet recorded =
-      parse_poses_json_value(f.method["input_poses"], f.source + ": method.input_poses");
+  const PoseSet recorded = *recorded_input_poses(f);  // the provenance records them
   const PoseSet set = with_quaternion_rotations(recorded, &rounded);
   const kernel::Motion<Rational> exact = interpolate_exact(set, recorded_options(prov));
   const auto& ep = *exact.provenance;

@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 #include <qmotion/io/json_number.hpp>
+#include <qmotion/io/poses.hpp>
 #include <string>
 
 static_assert(simdjson::SIMDJSON_PADDING <= qmotion::io::kReadPadding);
@@ -39,5 +40,9 @@ bool check(sj::value v);
 /// the shortest round-trip text of its value is kept without its text (Number::source()
 /// gives it back).
 bool number(sj::value v, Number& out, bool lean = false);
+
+/// The pose document at v (parse_poses_fast's reader, for a pose document inside another
+/// file); std::nullopt as parse_poses_fast; throws the set's checks.
+std::optional<PoseSet> poses(sj::value v, const std::string& source);
 
 }  // namespace qmotion::io::simd

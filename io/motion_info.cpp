@@ -21,10 +21,7 @@ json vec_json(const Eigen::Vector3d& v) { return json{v(0), v(1), v(2)}; }
 
 #ifdef QMOTION_WITH_CGAL
 /// The recorded input poses of a motion file's method, if any.
-std::optional<PoseSet> recorded_poses(const MotionFile& f) {
-  if (!f.method.is_object() || !f.method.contains("input_poses")) return std::nullopt;
-  return parse_poses_json_value(f.method["input_poses"], f.source + ": method.input_poses");
-}
+std::optional<PoseSet> recorded_poses(const MotionFile& f) { return recorded_input_poses(f); }
 #endif
 
 /// Residual of the motion at every recorded pose (null when a parameter is missing). Exact

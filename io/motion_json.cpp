@@ -258,7 +258,9 @@ std::optional<kernel::Provenance<double>> read_provenance(
   const json& me = f.method;
   for (const char* key : {"form", "rotation", "translation", "parameters", "input_poses",
                           "rotation_degree", "translation_degree"})
-    if (!me.is_object() || !me.contains(key)) return std::nullopt;
+    if (!me.is_object() ||
+        !(me.contains(key) || (f.input_poses && std::string_view(key) == "input_poses")))
+      return std::nullopt;
   kernel::Provenance<double> p;
   auto name = [&](const char* key) {
     return me[key].is_string() ? me[key].get<std::string>() : std::string();
@@ -294,7 +296,8 @@ std::optional<kernel::Provenance<double>> read_provenance(
     p.parameters.push_back(read_number(me["parameters"][i],
                                        f.source + ": method.parameters[" + std::to_string(i) + "]")
                                .value);
-  const PoseSet set = parse_poses_json_value(me["input_poses"], f.source + ": method.input_poses");
+  std::optional<PoseSet> parsed;
+  const PoseSet& set = f.input_poses ? *f.input_poses : *(parsed = recorded_input_poses(f));
   p.poses = to_poses_double(set);
   if (p.parameters.size() != p.poses.size())
     bad_method_field(f.source, "parameters",
@@ -322,6 +325,12 @@ std::optional<sweep::MotionFactors<kernel::Rational>> factors_exact(
       f, m, [](const Number& n) { return exact_from_text(n.source()); });
 }
 #endif
+
+std::optional<PoseSet> recorded_input_poses(const MotionFile& f) {
+  if (f.input_poses) return f.input_poses;
+  if (!f.method.is_object() || !f.method.contains("input_poses")) return std::nullopt;
+  return parse_poses_json_value(f.method["input_poses"], f.source + ": method.input_poses");
+}
 
 /// The checks that need the whole file, once its fields are read (by either reader):
 /// default Bezier knots, control point count, the knot vector, the parameter range's
@@ -447,8 +456,32 @@ std::optional<MotionFile> parse_motion_fast(const std::string& text, const std::
       sj::json_type t;
       if (v.type().get(t) || (t != sj::json_type::object && t != sj::json_type::null))
         return std::nullopt;
-      if (!(with_method ? simd::build(v, f.method, /*plain=*/true) : simd::check(v)))
-        return std::nullopt;
+      if (!with_method || t == sj::json_type::null) {
+        if (!(with_method ? simd::build(v, f.method, /*plain=*/true) : simd::check(v)))
+          return std::nullopt;
+        continue;
+      }
+      // Member by member: the input poses straight into a pose set, the rest into a tree.
+      sj::object mo;
+      if (v.get_object().get(mo)) return std::nullopt;
+      f.method = json::object();
+      f.input_poses.reset();
+      for (auto mf : mo) {
+        std::string_view mk;
+        if (mf.unescaped_key().get(mk)) return std::nullopt;
+        sj::value mv = mf.value();
+        if (mk == "input_poses") {
+          if (f.input_poses) return std::nullopt;  // given twice: the tree reader decides
+          try {
+            f.input_poses = simd::poses(mv, source + ": method.input_poses");
+          } catch (const Error&) {
+            return std::nullopt;  // refused where the tree reader refuses it, in its words
+          }
+          if (!f.input_poses) return std::nullopt;
+        } else if (!simd::build(mv, f.method[std::string(mk)], /*plain=*/true)) {
+          return std::nullopt;
+        }
+      }
     } else {
       nlohmann::json ignored;  // not read, but it must be valid JSON
       if (!simd::build(v, ignored, false)) return std::nullopt;

@@ -31,7 +31,15 @@ struct MotionFile {
   std::vector<std::array<Number, 8>> ctrl;  ///< (w, x, y, z, eps w, eps x, eps y, eps z)
   std::string units = "mm";
   nlohmann::json method;  ///< how the motion was made (null for hand-written files)
+  /// method.input_poses when the fast reader has read it (it is then not in `method`):
+  /// 10^4 poses without a tree. Read the poses through recorded_input_poses.
+  std::optional<PoseSet> input_poses;
 };
+
+/// The poses the method block records (input_poses), read from whichever form the reader
+/// left them in; std::nullopt when it records none. Throws Errc::invalid_input for
+/// malformed poses, naming "SOURCE: method.input_poses".
+std::optional<PoseSet> recorded_input_poses(const MotionFile& f);
 
 /// Validates a parsed motion document; throws Errc::invalid_input naming `source` and the
 /// field.

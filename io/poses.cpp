@@ -261,10 +261,9 @@ bool fast_rotation(sj::value v, RotationInput& out) {
 
 }  // namespace
 
-std::optional<PoseSet> parse_poses_fast(const std::string& text, const std::string& source) {
-  simd::Document d(text);
+std::optional<PoseSet> simd::poses(sj::value doc, const std::string& source) {
   sj::object root;
-  if (!d.ok || d.doc.get_object().get(root)) return std::nullopt;
+  if (doc.get_object().get(root)) return std::nullopt;
   PoseSet set;
   set.source = source;
   bool units = false, poses = false;
@@ -316,8 +315,17 @@ std::optional<PoseSet> parse_poses_fast(const std::string& text, const std::stri
       return std::nullopt;
     }
   }
-  if (!poses || !d.at_end()) return std::nullopt;
+  if (!poses) return std::nullopt;
   validate_set(set);
+  return set;
+}
+
+std::optional<PoseSet> parse_poses_fast(const std::string& text, const std::string& source) {
+  simd::Document d(text);
+  sj::value root;
+  if (!d.ok || d.doc.get_value().get(root)) return std::nullopt;
+  auto set = simd::poses(root, source);
+  if (!set || !d.at_end()) return std::nullopt;
   return set;
 }
 
