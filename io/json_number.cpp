@@ -488,6 +488,16 @@ bool number(sj::value v, Number& out, bool lean) {
   }
 }
 
+bool numbers(sj::value v, std::vector<Number>& out) {
+  sj::array a;
+  if (v.get_array().get(a)) return false;
+  for (auto e : a) {
+    sj::value ev;
+    if (e.get(ev) || !number(ev, out.emplace_back())) return false;
+  }
+  return true;
+}
+
 }  // namespace simd
 
 std::optional<Number> try_number_text(std::string_view t) {

@@ -19,11 +19,6 @@ using json = nlohmann::json;
 
 json vec_json(const Eigen::Vector3d& v) { return json{v(0), v(1), v(2)}; }
 
-#ifdef QMOTION_WITH_CGAL
-/// The recorded input poses of a motion file's method, if any.
-std::optional<PoseSet> recorded_poses(const MotionFile& f) { return recorded_input_poses(f); }
-#endif
-
 /// Residual of the motion at every recorded pose (null when a parameter is missing). Exact
 /// Scalar: 0 where Q(t_i) is exactly proportional to P_i, else the double residual.
 template <typename Scalar>
@@ -110,7 +105,7 @@ json motion_info(const MotionFile& f, bool exact) {
   if (motion.provenance) res = motion.provenance->residuals;
 #ifdef QMOTION_WITH_CGAL
   if (exact)
-    if (const auto poses = recorded_poses(f))
+    if (const auto poses = recorded_input_poses(f))
       // Rotations given as matrices or axis and angle: the double unit quaternion, exactly.
       res = interpolation_residuals(to_motion_exact(f),
                                     to_poses_exact(with_quaternion_rotations(*poses)), f,

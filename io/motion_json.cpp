@@ -256,11 +256,10 @@ std::optional<kernel::Provenance<double>> read_provenance(
     const MotionFile& f, const kernel::QMotion<double>& curve,
     const std::optional<sweep::MotionFactors<double>>& fac) {
   const json& me = f.method;
-  for (const char* key : {"form", "rotation", "translation", "parameters", "input_poses",
-                          "rotation_degree", "translation_degree"})
-    if (!me.is_object() ||
-        !(me.contains(key) || (f.input_poses && std::string_view(key) == "input_poses")))
-      return std::nullopt;
+  if (!me.is_object() || !(f.input_poses || me.contains("input_poses"))) return std::nullopt;
+  for (const char* key :
+       {"form", "rotation", "translation", "parameters", "rotation_degree", "translation_degree"})
+    if (!me.contains(key)) return std::nullopt;
   kernel::Provenance<double> p;
   auto name = [&](const char* key) {
     return me[key].is_string() ? me[key].get<std::string>() : std::string();
@@ -389,14 +388,8 @@ std::optional<MotionFile> parse_motion_fast(const std::string& text, const std::
   bool type = false, basis = false, degree = false, range = false, ctrl = false,
        knots_given = false;
   const auto numbers = [](sj::value v, std::vector<Number>& out) {
-    sj::array a;
-    if (v.get_array().get(a)) return false;
     out.clear();
-    for (auto e : a) {
-      sj::value ev;
-      if (e.get(ev) || !simd::number(ev, out.emplace_back())) return false;
-    }
-    return true;
+    return simd::numbers(v, out);
   };
   for (auto field : root) {
     std::string_view key;
@@ -456,9 +449,12 @@ std::optional<MotionFile> parse_motion_fast(const std::string& text, const std::
       sj::json_type t;
       if (v.type().get(t) || (t != sj::json_type::object && t != sj::json_type::null))
         return std::nullopt;
-      if (!with_method || t == sj::json_type::null) {
-        if (!(with_method ? simd::build(v, f.method, /*plain=*/true) : simd::check(v)))
-          return std::nullopt;
+      if (!with_method) {
+        if (!simd::check(v)) return std::nullopt;
+        continue;
+      }
+      if (t == sj::json_type::null) {
+        f.method = nullptr;
         continue;
       }
       // Member by member: the input poses straight into a pose set, the rest into a tree.

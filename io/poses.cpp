@@ -197,15 +197,8 @@ namespace sj = simd::sj;
 
 /// Reads an array of exactly `n` numbers into `out`; false for anything else.
 bool fast_numbers(sj::value v, std::size_t n, std::vector<Number>& out) {
-  sj::array a;
-  if (v.get_array().get(a)) return false;
-  std::size_t k = 0;
-  for (auto e : a) {
-    sj::value ev;
-    if (k == n || e.get(ev) || !simd::number(ev, out.emplace_back())) return false;
-    ++k;
-  }
-  return k == n;
+  const std::size_t before = out.size();
+  return simd::numbers(v, out) && out.size() - before == n;
 }
 
 /// The rotation object: exactly one of its three forms, each key once; false otherwise.
