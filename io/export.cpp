@@ -176,12 +176,23 @@ sweep::NurbsSurface<double> edge_surface(const kernel::Motion<double>& lm,
       for (const auto& c : cols) diag = std::max(diag, diagonal(curve_samples(c, 100)));
       const double tol = opt.tol > 0 ? opt.tol : 1e-6 * diag;
       tol_used = tol;
-      // The columns are fitted within a tolerance; the surface between them is measured on
-      // an 81 x 81 lattice and held to half the tolerance (denser checks then stay within
-      // it), tightening the columns' tolerance up to five times.
+      // The columns are fitted within a tolerance; the surface between them is measured at
+      // 6 x 6 points in every span of its knots and held to 0.9 of the tolerance, like the
+      // columns, tightening the columns' tolerance by halves up to five times.
+      const auto params = [](const std::vector<double>& knots) {
+        std::vector<double> x;
+        for (std::size_t k = 0; k + 1 < knots.size(); ++k)
+          if (knots[k + 1] > knots[k])
+            for (int i = 0; i < 6; ++i) x.push_back(knots[k] + (knots[k + 1] - knots[k]) * i / 6);
+        x.push_back(knots.back());
+        return x;
+      };
+      const std::vector<double> vs = params(profile.knots);
+      std::vector<Eigen::Vector3d> section(vs.size());
+      for (std::size_t j = 0; j < vs.size(); ++j) section[j] = sweep::evaluate(profile, vs[j]);
       double dev = HUGE_VAL, col_tol = tol;
       sweep::NurbsSurface<double> s;
-      for (int attempt = 0; attempt < 6 && !(dev <= 0.5 * tol); ++attempt, col_tol /= 4) {
+      for (int attempt = 0; attempt < 6 && !(dev <= 0.9 * tol); ++attempt, col_tol /= 2) {
         const auto approx = sweep::approximate_homogeneous(cols, opt.max_degree, col_tol);
         sweep::HomogeneousSurface<double> hs{approx.curves.front().degree(),
                                              profile.degree,
@@ -195,15 +206,12 @@ sweep::NurbsSurface<double> edge_surface(const kernel::Motion<double>& lm,
             hs.poles[i][j] = approx.curves[j].ctrl()[i];
         s = sweep::to_nurbs(hs);
         dev = 0;
-        for (int i = 0; i <= 80; ++i)
-          for (int j = 0; j <= 80; ++j) {
-            const double u = lm.curve.a() + (lm.curve.b() - lm.curve.a()) * i / 80.0;
-            const double v =
-                profile.knots.front() + (profile.knots.back() - profile.knots.front()) * j / 80.0;
-            const auto exact =
-                kernel::apply_point(kernel::evaluate(lm.curve, u), sweep::evaluate(profile, v));
-            dev = std::max(dev, (sweep::evaluate(s, u, v) - exact).norm());
-          }
+        for (const double u : params(s.knots_u)) {
+          const auto m = kernel::evaluate(lm.curve, u);
+          for (std::size_t j = 0; j < vs.size(); ++j)
+            dev = std::max(
+                dev, (sweep::evaluate(s, u, vs[j]) - kernel::apply_point(m, section[j])).norm());
+        }
       }
       if (!(dev <= tol))
         throw Error(Errc::numerical_failure,

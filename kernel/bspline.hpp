@@ -15,6 +15,19 @@ namespace qmotion::kernel {
 /// multiplicities at most degree+1: degree+1 is a break, which derivatives can need). A value
 /// class: the factory validates the invariant.
 /// @see Piegl & Tiller, The NURBS Book, ch. 2-5; Ramshaw 1989 for blossoms
+/// Index j with T[j] <= t < T[j+1] of a degree-p knot vector T with n poles (the last
+/// non-empty span for t >= its end, the first for t before its start).
+template <typename Scalar>
+int knot_span(const std::vector<Scalar>& T, int p, int n, const Scalar& t) {
+  if (!(t < T[static_cast<std::size_t>(n)])) {
+    int j = n - 1;
+    while (j > p && !(T[static_cast<std::size_t>(j)] < T[static_cast<std::size_t>(j + 1)])) --j;
+    return j;
+  }
+  const auto it = std::upper_bound(T.begin() + p, T.begin() + n, t);
+  return std::max(p, static_cast<int>(it - T.begin()) - 1);
+}
+
 template <typename Coef>
 class BSpline {
  public:
@@ -88,17 +101,7 @@ class BSpline {
 
   /// Index j with knots[j] <= t < knots[j+1] (the last non-empty span for t >= b, the
   /// first for t < a).
-  int find_span(const Scalar& t) const {
-    const int n = static_cast<int>(c_.size()) - 1;
-    if (!(t < t_[static_cast<std::size_t>(n + 1)])) {
-      int j = n;
-      while (j > p_ && !(t_[static_cast<std::size_t>(j)] < t_[static_cast<std::size_t>(j + 1)]))
-        --j;
-      return j;
-    }
-    const auto it = std::upper_bound(t_.begin() + p_, t_.begin() + n + 1, t);
-    return std::max(p_, static_cast<int>(it - t_.begin()) - 1);
-  }
+  int find_span(const Scalar& t) const { return knot_span(t_, p_, static_cast<int>(c_.size()), t); }
 
   /// Distinct knot values a = x_0 < x_1 < ... < x_r = b.
   std::vector<Scalar> breakpoints() const {

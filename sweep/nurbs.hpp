@@ -55,11 +55,21 @@ kernel::BSpline<Eigen::Matrix<Scalar, 4, 1>> to_homogeneous(const NurbsCurve<Sca
   return kernel::BSpline<Eigen::Matrix<Scalar, 4, 1>>::make(c.degree, c.knots, std::move(h));
 }
 
-/// Point of the curve at t (homogeneous de Boor, then projection).
+/// Point of the curve at t: the p + 1 homogeneous poles of t's span weighted by their basis
+/// functions, then projected. Exact for exact Scalar.
 template <typename Scalar>
 Eigen::Matrix<Scalar, 3, 1> evaluate(const NurbsCurve<Scalar>& c, const Scalar& t) {
-  const Eigen::Matrix<Scalar, 4, 1> h = kernel::evaluate(to_homogeneous(c), t);
-  return (h.template tail<3>() / h(0)).eval();
+  const int j = kernel::knot_span(c.knots, c.degree, static_cast<int>(c.points.size()), t);
+  const auto N = kernel::basis_functions(c.knots, j, c.degree, t);
+  Scalar w(0);
+  Eigen::Matrix<Scalar, 3, 1> x = Eigen::Matrix<Scalar, 3, 1>::Zero();
+  for (int a = 0; a <= c.degree; ++a) {
+    const auto i = static_cast<std::size_t>(j - c.degree + a);
+    const Scalar nw = Scalar(N[static_cast<std::size_t>(a)] * c.weights[i]);
+    w += nw;
+    x += (c.points[i] * nw).eval();
+  }
+  return (x / w).eval();
 }
 
 }  // namespace qmotion::sweep

@@ -107,23 +107,28 @@ NurbsSurface<Scalar> to_nurbs(const HomogeneousSurface<Scalar>& h) {
   return s;
 }
 
-/// Point of a NURBS surface at (u, v) (homogeneous de Boor in v of the u-curves).
+/// Point of a NURBS surface at (u, v): the (p + 1) x (q + 1) homogeneous poles of the spans
+/// of u and v weighted by their basis functions. Exact for exact Scalar.
 template <typename Scalar>
 Eigen::Matrix<Scalar, 3, 1> evaluate(const NurbsSurface<Scalar>& s, const Scalar& u,
                                      const Scalar& v) {
-  std::vector<Vec4<Scalar>> col;
-  for (std::size_t j = 0; j < s.points.front().size(); ++j) {
-    std::vector<Vec4<Scalar>> c;
-    for (std::size_t i = 0; i < s.points.size(); ++i) {
-      Vec4<Scalar> p;
-      p << s.weights[i][j], s.points[i][j] * s.weights[i][j];
-      c.push_back(p);
+  const int p = s.degree_u, q = s.degree_v;
+  const int ju = kernel::knot_span(s.knots_u, p, static_cast<int>(s.points.size()), u);
+  const int jv = kernel::knot_span(s.knots_v, q, static_cast<int>(s.points.front().size()), v);
+  const auto Nu = kernel::basis_functions(s.knots_u, ju, p, u);
+  const auto Nv = kernel::basis_functions(s.knots_v, jv, q, v);
+  Vec4<Scalar> h = Vec4<Scalar>::Zero();
+  for (int a = 0; a <= p; ++a) {
+    const auto i = static_cast<std::size_t>(ju - p + a);
+    Vec4<Scalar> row = Vec4<Scalar>::Zero();
+    for (int b = 0; b <= q; ++b) {
+      const auto j = static_cast<std::size_t>(jv - q + b);
+      const Scalar nw = Scalar(Nv[static_cast<std::size_t>(b)] * s.weights[i][j]);
+      row(0) += nw;
+      row.template tail<3>() += (s.points[i][j] * nw).eval();
     }
-    col.push_back(
-        kernel::evaluate(kernel::BSpline<Vec4<Scalar>>::make(s.degree_u, s.knots_u, c), u));
+    h += (row * Nu[static_cast<std::size_t>(a)]).eval();
   }
-  const Vec4<Scalar> h =
-      kernel::evaluate(kernel::BSpline<Vec4<Scalar>>::make(s.degree_v, s.knots_v, col), v);
   return (h.template tail<3>() / h(0)).eval();
 }
 

@@ -1,6 +1,8 @@
 // tests/sweep/sweep_test.cpp mirrors sweep/trajectory.hpp, sweep/surface.hpp,
 // sweep/weights.hpp, sweep/profiles.hpp, sweep/approximate.hpp
+#include <Eigen/Geometry>
 #include <cmath>
+#include <map>
 #include <qmotion/io/nurbs_json.hpp>
 #include <qmotion/io/poses.hpp>
 #include <qmotion/kernel/interpolation.hpp>
@@ -291,6 +293,59 @@ TEST(Approximation, LowerDegreeWithinTheMeasuredTolerance) {
                             .norm());
   }
   EXPECT_LE(dev, 1e-4);
+}
+
+TEST(Approximation, SplineMotionKeepsItsJointsAndBeatsTheExactPoleCount) {
+  // A cubic B-spline motion through 40 poses of a helix: its trajectories have degree 9 and
+  // only C2 joints, so the exact curve carries a 7-fold knot at each of its 38 joints.
+  const auto P = io::to_poses_double(io::read_poses(test_data("poses/helix_40.json")));
+  std::vector<double> t;
+  for (const auto& p : P) t.push_back(*p.t);
+  const auto m = kernel::interpolate_bspline(P, t, kernel::SplineOptions{});
+  const auto h = sweep::trajectory_from_factors(*m.factors, sweep::Vec4<double>(1, 1, 0, 2));
+  const int p = h.degree();
+  std::map<double, int> joint_continuity;
+  for (const double x : h.breakpoints())
+    if (x > h.a() && x < h.b()) joint_continuity[x] = kernel::continuity_at(h, x);
+  ASSERT_GT(joint_continuity.size(), 30u);
+  Eigen::AlignedBox3d box;
+  const auto exact = [&](double u) {
+    const Eigen::Vector4d y = kernel::evaluate(h, u);
+    return V3(y.tail<3>() / y(0));
+  };
+  for (int i = 0; i <= 1000; ++i) box.extend(exact(h.a() + (h.b() - h.a()) * i / 1000));
+  for (const int D : {7, 5})
+    for (const double rel : {1e-5, 1e-9}) {
+      SCOPED_TRACE("degree " + std::to_string(D) + ", tolerance " + std::to_string(rel));
+      ASSERT_LT(D, p);
+      const double tol = rel * box.diagonal().norm();
+      const auto a = sweep::approximate_homogeneous({h}, D, tol);
+      const auto& c = a.curves.front();
+      EXPECT_EQ(c.degree(), D);
+      // Fewer poles than the exact curve itself, or the approximation would be pointless.
+      EXPECT_LT(c.ctrl().size(), h.ctrl().size());
+      // Never less smooth than the motion: at a joint the fit's continuity is at least the
+      // curve's (or D - 1); every other knot is simple.
+      for (const double x : c.breakpoints()) {
+        if (x == c.a() || x == c.b()) continue;
+        const auto it = joint_continuity.find(x);
+        if (it == joint_continuity.end())
+          EXPECT_EQ(kernel::continuity_at(c, x), D - 1) << x;
+        else
+          EXPECT_GE(kernel::continuity_at(c, x), std::min(it->second, D - 1)) << x;
+      }
+      // An independent measurement, denser than the fit's own, agrees with the stated one.
+      double dev = 0;
+      for (int i = 0; i <= 20011; ++i) {
+        const double u = h.a() + (h.b() - h.a()) * i / 20011.0;
+        const Eigen::Vector4d y = kernel::evaluate(c, u);
+        ASSERT_GT(y(0), 0);
+        dev = std::max(dev, (V3(y.tail<3>() / y(0)) - exact(u)).norm());
+      }
+      EXPECT_LE(dev, tol);
+      EXPECT_LE(a.max_deviation, tol);
+      EXPECT_GE(a.max_deviation, 0.9 * dev);
+    }
 }
 
 }  // namespace
