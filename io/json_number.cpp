@@ -488,12 +488,12 @@ bool number(sj::value v, Number& out, bool lean) {
   }
 }
 
-bool numbers(sj::value v, std::vector<Number>& out) {
+bool numbers(sj::value v, std::vector<Number>& out, bool lean) {
   sj::array a;
   if (v.get_array().get(a)) return false;
   for (auto e : a) {
     sj::value ev;
-    if (e.get(ev) || !number(ev, out.emplace_back())) return false;
+    if (e.get(ev) || !number(ev, out.emplace_back(), lean)) return false;
   }
   return true;
 }

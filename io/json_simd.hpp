@@ -41,9 +41,9 @@ bool check(sj::value v);
 /// gives it back).
 bool number(sj::value v, Number& out, bool lean = false);
 
-/// Appends the numbers of the array at v to `out` (as number() reads each); false for
-/// anything else.
-bool numbers(sj::value v, std::vector<Number>& out);
+/// Appends the numbers of the array at v to `out` (as number() reads each, `lean` too);
+/// false for anything else.
+bool numbers(sj::value v, std::vector<Number>& out, bool lean = false);
 
 /// The pose document at v (parse_poses_fast's reader, for a pose document inside another
 /// file); std::nullopt as parse_poses_fast; throws the set's checks.

@@ -59,8 +59,11 @@ std::optional<sweep::MotionFactors<Scalar>> read_factors(const MotionFile& f,
                                                          const kernel::QMotion<Scalar>& m,
                                                          Conv conv) {
   const json& me = f.method;
-  if (!me.is_object() || !me.contains("rotation_control_points") ||
-      !me.contains("translation_control_points") || !me.contains("translation"))
+  const auto has = [&](const char* key) {
+    return f.factor_rows.count(key) > 0 || (me.is_object() && me.contains(key));
+  };
+  if (!me.is_object() || !has("rotation_control_points") || !has("translation_control_points") ||
+      !me.contains("translation"))
     return std::nullopt;
   const std::string where = f.source + ": method";
   const auto parsed = kernel::translation_method_from_string(
@@ -79,6 +82,19 @@ std::optional<sweep::MotionFactors<Scalar>> read_factors(const MotionFile& f,
     return k;
   };
   auto rows = [&](const char* key, std::size_t width) {
+    std::vector<std::vector<Scalar>> r;
+    if (const auto it = f.factor_rows.find(key); it != f.factor_rows.end()) {
+      const MotionFile::Rows& fr = it->second;  // the fast reader's: non-empty, checked widths
+      if (fr.width != width)
+        throw Error(Errc::invalid_input,
+                    where + "." + key + "[0]: expected " + std::to_string(width) + " numbers");
+      r.reserve(fr.values.size() / width);
+      for (std::size_t i = 0; i < fr.values.size(); i += width) {
+        std::vector<Scalar>& row = r.emplace_back();
+        for (std::size_t k = 0; k < width; ++k) row.push_back(conv(fr.values[i + k]));
+      }
+      return r;
+    }
     // (const operator[] on a missing key is undefined: a TRT method without its second
     // translation factor read freed memory, found by tests/fuzz.)
     if (!me.contains(key))
@@ -88,7 +104,6 @@ std::optional<sweep::MotionFactors<Scalar>> read_factors(const MotionFile& f,
     const json& a = me[key];
     if (!a.is_array() || a.empty())
       throw Error(Errc::invalid_input, where + "." + key + ": expected an array of control points");
-    std::vector<std::vector<Scalar>> r;
     for (std::size_t i = 0; i < a.size(); ++i) {
       const auto v = read_numbers(a[i], where + "." + key + "[" + std::to_string(i) + "]");
       if (v.size() != width)
@@ -372,6 +387,29 @@ void finish_motion(MotionFile& f, bool knots_given) {
                 source + ": control_points: the rotational (real) part is zero everywhere");
 }
 
+namespace {
+
+/// A method block's control points as rows of one width, lean (simd::number); false for
+/// anything else (no rows, an empty row, rows of different widths, not numbers): the tree
+/// reader then reads and words it.
+bool control_rows(simd::sj::value v, MotionFile::Rows& out) {
+  simd::sj::array a;
+  if (v.get_array().get(a)) return false;
+  out.width = 0;
+  for (auto e : a) {
+    simd::sj::value row;
+    if (e.get(row)) return false;
+    const std::size_t before = out.values.size();
+    if (!simd::numbers(row, out.values, /*lean=*/true)) return false;
+    const std::size_t width = out.values.size() - before;
+    if (out.width == 0) out.width = width;
+    if (width == 0 || width != out.width) return false;
+  }
+  return out.width != 0;
+}
+
+}  // namespace
+
 /// The motion file read straight from the text by simdjson, without a DOM for the
 /// control points and knots (a 10^4-pose motion is 10^5 numbers). std::nullopt as soon as
 /// anything is unusual (a field of the wrong kind, an exact "p/q" number, invalid JSON):
@@ -462,6 +500,7 @@ std::optional<MotionFile> parse_motion_fast(const std::string& text, const std::
       if (v.get_object().get(mo)) return std::nullopt;
       f.method = json::object();
       f.input_poses.reset();
+      f.factor_rows.clear();
       for (auto mf : mo) {
         std::string_view mk;
         if (mf.unescaped_key().get(mk)) return std::nullopt;
@@ -474,6 +513,11 @@ std::optional<MotionFile> parse_motion_fast(const std::string& text, const std::
             return std::nullopt;  // refused where the tree reader refuses it, in its words
           }
           if (!f.input_poses) return std::nullopt;
+        } else if (mk == "rotation_control_points" || mk == "translation_control_points" ||
+                   mk == "translation2_control_points") {
+          // Rows of equal width, read lean; anything else (or a repeat) the tree reader words.
+          if (f.factor_rows.count(mk) || !control_rows(mv, f.factor_rows[std::string(mk)]))
+            return std::nullopt;
         } else if (!simd::build(mv, f.method[std::string(mk)], /*plain=*/true)) {
           return std::nullopt;
         }

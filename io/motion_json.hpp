@@ -34,6 +34,14 @@ struct MotionFile {
   /// method.input_poses when the fast reader has read it (it is then not in `method`):
   /// 10^4 poses without a tree. Read the poses through recorded_input_poses.
   std::optional<PoseSet> input_poses;
+  /// Control points of the recorded factors (method.rotation_control_points, ...) when the
+  /// fast reader has read them (they are then not in `method`): `width` numbers a row, the
+  /// rows one after another, without a tree. factors_double and factors_exact read either.
+  struct Rows {
+    std::size_t width = 0;
+    std::vector<Number> values;
+  };
+  std::map<std::string, Rows, std::less<>> factor_rows;
 };
 
 /// The poses the method block records (input_poses), read from whichever form the reader

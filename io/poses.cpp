@@ -112,9 +112,10 @@ void validate_set(PoseSet& set) {
   if (first_t)
     for (std::size_t i = 1; i < P.size(); ++i)
       if (!(P[i].t->value > P[i - 1].t->value))
-        throw Error(Errc::invalid_input, pose_where(set.source, i, "t") +
-                                             ": parameters must increase strictly, but t = " +
-                                             P[i].t->text + " follows t = " + P[i - 1].t->text);
+        throw Error(Errc::invalid_input,
+                    pose_where(set.source, i, "t") +
+                        ": parameters must increase strictly, but t = " + P[i].t->source() +
+                        " follows t = " + P[i - 1].t->source());
 }
 
 RotationInput read_rotation(const json& r, const Where& w) {
@@ -198,7 +199,7 @@ namespace sj = simd::sj;
 /// Reads an array of exactly `n` numbers into `out`; false for anything else.
 bool fast_numbers(sj::value v, std::size_t n, std::vector<Number>& out) {
   const std::size_t before = out.size();
-  return simd::numbers(v, out) && out.size() - before == n;
+  return simd::numbers(v, out, /*lean=*/true) && out.size() - before == n;
 }
 
 /// The rotation object: exactly one of its three forms, each key once; false otherwise.
@@ -237,7 +238,7 @@ bool fast_rotation(sj::value v, RotationInput& out) {
           if (axis || !fast_numbers(av, 3, out.values)) return false;
           axis = true;
         } else if (ak == "angle_deg") {
-          if (angle || !simd::number(av, angle_deg)) return false;
+          if (angle || !simd::number(av, angle_deg, /*lean=*/true)) return false;
           angle = true;
         } else if (!simd::check(av)) {
           return false;
@@ -287,7 +288,7 @@ std::optional<PoseSet> simd::poses(sj::value doc, const std::string& source) {
           if (pk == "t") {
             bool null = false;
             if (t || pv.is_null().get(null)) return std::nullopt;
-            if (!null && !simd::number(pv, in.t.emplace())) return std::nullopt;
+            if (!null && !simd::number(pv, in.t.emplace(), /*lean=*/true)) return std::nullopt;
             t = true;
           } else if (pk == "position") {
             std::vector<Number> xyz;
@@ -438,13 +439,13 @@ std::vector<Pose<kernel::Rational>> to_poses_exact(const PoseSet& set) {
                       ": exact mode needs the rotation as a quaternion (a rotation matrix or an "
                       "axis and angle has no exact rational quaternion in general)");
     Pose<kernel::Rational> q;
-    if (p.t) q.t = exact_from_text(p.t->text);
+    if (p.t) q.t = exact_from_text(p.t->source());
     for (int k = 0; k < 3; ++k)
-      q.position(k) = exact_from_text(p.position[static_cast<std::size_t>(k)].text);
+      q.position(k) = exact_from_text(p.position[static_cast<std::size_t>(k)].source());
     const auto& v = p.rotation.values;
     q.rotation = kernel::Quaternion<kernel::Rational>(
-        exact_from_text(v[0].text), exact_from_text(v[1].text), exact_from_text(v[2].text),
-        exact_from_text(v[3].text));
+        exact_from_text(v[0].source()), exact_from_text(v[1].source()),
+        exact_from_text(v[2].source()), exact_from_text(v[3].source()));
     out.push_back(q);
   }
   return out;
@@ -472,9 +473,11 @@ PoseSet with_quaternion_rotations(const PoseSet& set, std::vector<std::size_t>* 
 
 namespace {
 /// Whether a number is written as its source text (a string): a decimal of at most 15
-/// digits survives the trip through double (shortest round-trip printing); anything
-/// longer, and every "p/q", keeps its text.
+/// digits survives the trip through double (shortest round-trip printing), and so does one
+/// read without its text (it was that printing already); anything longer, and every "p/q",
+/// keeps its text.
 bool keeps_text(const Number& n) {
+  if (n.text.empty()) return false;
   const auto digits = std::count_if(n.text.begin(), n.text.end(), [](char c) {
     return std::isdigit(static_cast<unsigned char>(c));
   });

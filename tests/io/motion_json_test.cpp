@@ -207,8 +207,26 @@ TEST(MotionJson, TheFastReaderReadsWhatTheDomReaderReads) {
     EXPECT_EQ(a->units, b.units) << name;
     // The method block, its input poses read straight into a pose set by the fast reader.
     nlohmann::json am = a->method, bm = b.method;
-    if (bm.is_object()) bm.erase("input_poses");
+    if (bm.is_object())
+      for (const char* key : {"input_poses", "rotation_control_points",
+                              "translation_control_points", "translation2_control_points"})
+        bm.erase(key);
     EXPECT_EQ(am, bm) << name;
+    // The factors' control points read as rows, without a tree: the same factors, bit for bit.
+    const auto af = io::to_motion(*a).factors, bf = io::to_motion(b).factors;
+    ASSERT_EQ(af.has_value(), bf.has_value()) << name;
+    if (af) {
+      EXPECT_FALSE(a->factor_rows.empty()) << name;
+      EXPECT_EQ(af->method, bf->method) << name;
+      EXPECT_TRUE(af->rotation.ctrl() == bf->rotation.ctrl()) << name;
+      EXPECT_EQ(af->rotation.knots(), bf->rotation.knots()) << name;
+      EXPECT_EQ(af->translation.ctrl(), bf->translation.ctrl()) << name;
+      EXPECT_EQ(af->translation.knots(), bf->translation.knots()) << name;
+      ASSERT_EQ(af->translation2.has_value(), bf->translation2.has_value()) << name;
+      if (af->translation2) {
+        EXPECT_EQ(af->translation2->ctrl(), bf->translation2->ctrl()) << name;
+      }
+    }
     EXPECT_EQ(a->input_poses.has_value(), b.method.is_object() && b.method.contains("input_poses"))
         << name;
     const auto ap = io::recorded_input_poses(*a), bp = io::recorded_input_poses(b);

@@ -320,5 +320,33 @@ TEST(MotionValue, MalformedMethodBlocksAreRefusedWithHowToRegenerate) {
   }
 }
 
+TEST(MotionValue, FactorRowsOfTheWrongWidthGetOneMessageFromBothReaders) {
+  // The fast reader reads the factors' control points as rows; the tree reader words what is
+  // wrong. Both name the row, and say the same.
+  for (const auto& [file, field] : std::vector<std::pair<std::string, std::string>>{
+           {"method_factor_row_short.json", "method.rotation_control_points[1]: expected 4"},
+           {"method_factor_rows_of_three.json", "method.rotation_control_points[0]: expected 4"}}) {
+    const std::string path = kData + "/bad_motions/" + file;
+    const std::string text = io::read_text_file(path);
+    std::string fast, tree;
+    try {
+      io::load_motion(path);
+      ADD_FAILURE() << file << " was accepted";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.code(), Errc::invalid_input);
+      fast = e.what();
+    }
+    try {
+      io::to_motion(io::parse_motion(io::parse_json_reference(text, path), path));
+      ADD_FAILURE() << file << " was accepted by the tree reader";
+    } catch (const Error& e) {
+      tree = e.what();
+    }
+    EXPECT_EQ(fast, tree);
+    EXPECT_NE(fast.find(path), std::string::npos) << fast;
+    EXPECT_NE(fast.find(field), std::string::npos) << fast;
+  }
+}
+
 }  // namespace
 }  // namespace qmotion::test

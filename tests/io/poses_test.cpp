@@ -6,6 +6,7 @@
 #include <qmotion/io/atomic_file.hpp>
 #include <qmotion/io/exact_number.hpp>
 #include <qmotion/io/json_number.hpp>
+#include <qmotion/io/json_text.hpp>
 #include <qmotion/io/poses.hpp>
 #include <qmotion/kernel/error.hpp>
 #include <variant>
@@ -42,10 +43,11 @@ TEST(Poses, SharedSamplesReadWithEveryRotationForm) {
 TEST(Poses, RationalStringsAreKeptExactly) {
   const auto set = io::read_poses(test_data("poses/rational_exact.json"));
   ASSERT_EQ(set.poses.size(), 4u);
-  EXPECT_EQ(io::exact_from_text(set.poses[1].t->text), kernel::Rational(1) / kernel::Rational(3));
-  EXPECT_EQ(io::exact_from_text(set.poses[3].position[2].text),
+  EXPECT_EQ(io::exact_from_text(set.poses[1].t->source()),
+            kernel::Rational(1) / kernel::Rational(3));
+  EXPECT_EQ(io::exact_from_text(set.poses[3].position[2].source()),
             kernel::Rational(1) / kernel::Rational(7));
-  EXPECT_EQ(set.poses[2].rotation.values[0].text, "2");
+  EXPECT_EQ(set.poses[2].rotation.values[0].source(), "2");
 }
 
 TEST(Poses, MatrixRotationsMatchTheirQuaternion) {
@@ -81,17 +83,55 @@ TEST(Poses, JsonRoundTripKeepsEveryNumber) {
     for (std::size_t i = 0; i < a.poses.size(); ++i) {
       EXPECT_EQ(a.poses[i].t.has_value(), b.poses[i].t.has_value());
       if (a.poses[i].t) {
-        EXPECT_EQ(io::exact_from_text(a.poses[i].t->text), io::exact_from_text(b.poses[i].t->text));
+        EXPECT_EQ(io::exact_from_text(a.poses[i].t->source()),
+                  io::exact_from_text(b.poses[i].t->source()));
       }
       for (int k = 0; k < 3; ++k)
-        EXPECT_EQ(io::exact_from_text(a.poses[i].position[k].text),
-                  io::exact_from_text(b.poses[i].position[k].text));
+        EXPECT_EQ(io::exact_from_text(a.poses[i].position[k].source()),
+                  io::exact_from_text(b.poses[i].position[k].source()));
       ASSERT_EQ(a.poses[i].rotation.values.size(), b.poses[i].rotation.values.size());
       for (std::size_t k = 0; k < a.poses[i].rotation.values.size(); ++k)
-        EXPECT_EQ(io::exact_from_text(a.poses[i].rotation.values[k].text),
-                  io::exact_from_text(b.poses[i].rotation.values[k].text));
+        EXPECT_EQ(io::exact_from_text(a.poses[i].rotation.values[k].source()),
+                  io::exact_from_text(b.poses[i].rotation.values[k].source()));
     }
   }
+}
+
+TEST(Poses, TheFastReaderKeepsNoTextItsValueGivesBack) {
+  const std::string text =
+      R"({"poses":[{"t":0.10000000000000001,"position":[0.30000000000000004,0.1,1e-5],)"
+      R"("rotation":{"quaternion":[1,0,0,0]}},{"t":1,"position":[0,0,0],)"
+      R"("rotation":{"axis_angle":{"axis":[0,0,1],"angle_deg":12.5}}}]})";
+  const auto fast = io::parse_poses_fast(text, "p.json");
+  ASSERT_TRUE(fast.has_value());
+  const auto& p = fast->poses[0];
+  // Shortest round-trip texts are kept as their values alone...
+  EXPECT_TRUE(p.position[0].text.empty());
+  EXPECT_TRUE(p.position[1].text.empty());
+  EXPECT_TRUE(fast->poses[1].rotation.values[3].text.empty());
+  // ...and give the same decimal back: exact mode still reads 0.1 as 1/10.
+  EXPECT_EQ(p.position[0].source(), "0.30000000000000004");
+  EXPECT_EQ(io::exact_from_text(p.position[1].source()),
+            kernel::Rational(1) / kernel::Rational(10));
+  // Other spellings keep their text.
+  EXPECT_EQ(p.position[2].text, "1e-5");
+  EXPECT_EQ(p.t->text, "0.10000000000000001");
+  // Written back, a value-only number is a JSON number with the same text; a text the value
+  // does not give back stays a string.
+  const auto j = io::poses_to_json(*fast);
+  const auto& jp = j["poses"][0];
+  ASSERT_TRUE(jp["position"][0].is_number_float());
+  EXPECT_EQ(jp["position"][0].dump(), "0.30000000000000004");
+  EXPECT_EQ(jp["position"][0].get<double>(), p.position[0].value);
+  EXPECT_EQ(jp["t"], "0.10000000000000001");
+  io::JsonText streamed;
+  io::poses_text(streamed, *fast, 0);
+  EXPECT_EQ(nlohmann::json::parse(streamed.out), j);
+  const auto again = io::parse_poses_json(streamed.out, "again.json");
+  for (int k = 0; k < 3; ++k)
+    EXPECT_EQ(io::exact_from_text(again.poses[0].position[k].source()),
+              io::exact_from_text(p.position[k].source()));
+  EXPECT_EQ(io::exact_from_text(again.poses[0].t->source()), io::exact_from_text(p.t->source()));
 }
 
 /// The set read by the tree reader alone (nlohmann's parser), or its message.
@@ -103,8 +143,10 @@ std::variant<io::PoseSet, std::string> dom_read(const std::string& text) {
   }
 }
 
+/// The same number: the same source text (the fast reader keeps none where the text is the
+/// value's shortest round-trip text; source() gives it back) and the same double.
 void expect_same_numbers(const io::Number& a, const io::Number& b, const std::string& where) {
-  EXPECT_EQ(a.text, b.text) << where;
+  EXPECT_EQ(a.source(), b.source()) << where;
   EXPECT_EQ(std::memcmp(&a.value, &b.value, sizeof(double)), 0) << where;  // bit for bit
 }
 
