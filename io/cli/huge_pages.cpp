@@ -1,35 +1,59 @@
-// io/cli/huge_pages.cpp: the qmotion executable's global operator new. Blocks of 2 MiB and
-// more (a 10^4-pose file's text, its parser's index, the control points) are asked to be
-// backed by transparent huge pages (madvise(MADV_HUGEPAGE); Debian's default THP mode is
-// "madvise", so nothing else gets them). First-touch page faults were a quarter of `eval`,
-// `info` and `interpolate` on a 10^4-pose motion, and on a virtual machine each costs
-// microseconds; with 2 MiB pages there are 512 times fewer. Measured in one run (best of
-// 5): eval 0.19 -> 0.13 s, info 0.29 -> 0.23 s, interpolate 0.26 -> 0.20 s, peak RSS +3 MB.
-// The library is untouched: a program of its own gets the same from glibc with
-// GLIBC_TUNABLES=glibc.malloc.hugetlb=1. Sanitized builds keep their own operator new.
+// io/cli/huge_pages.cpp: the qmotion executable's global operator new, over malloc, asking
+// for transparent huge pages (madvise(MADV_HUGEPAGE); Debian's default THP mode is
+// "madvise", so nothing else gets them) for blocks of 2 MiB and more (a 10^4-pose file's
+// text, its parser's index, the control points) and for each growth of malloc's heap (the
+// many small blocks of the interpolation and the trees). First-touch page faults were a
+// quarter of `eval`, `info` and `interpolate` on a 10^4-pose motion, and on a virtual
+// machine each costs microseconds; 2 MiB pages need 512 times fewer. Measured in one run
+// (best of 5): eval 0.19 -> 0.12 s, info 0.29 -> 0.20 s, interpolate 0.26 -> 0.18 s, peak
+// RSS within 3 MB. The library is untouched: a program of its own gets the same from glibc
+// with GLIBC_TUNABLES=glibc.malloc.hugetlb=1. Sanitized builds keep their own operator new.
 #if !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
+#include <malloc.h>
 #include <sys/mman.h>
+#include <unistd.h>
 
+#include <atomic>
 #include <cstdint>
 #include <cstdlib>
 #include <new>
 
 namespace {
 constexpr std::uintptr_t kHugePage = std::uintptr_t{2} << 20;
+
+/// Asks for huge pages on [first, last) rounded inward to whole huge pages.
+void advise(std::uintptr_t first, std::uintptr_t last) {
+  first = (first + kHugePage - 1) & ~(kHugePage - 1);
+  last &= ~(kHugePage - 1);
+  if (last > first)  // advice only: a kernel without THP refuses it, and nothing changes
+    (void)madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
+}
+
+/// The heap's end when last advised. glibc grows its main heap by brk; sbrk(0) reads its
+/// cached end without a system call, so a growth is seen at the next allocation and the new
+/// part advised (what glibc.malloc.hugetlb=1 does inside malloc).
+std::atomic<std::uintptr_t> advised_end{0};
+
+void advise_heap_growth() {
+  // The heap grows 4 MiB beyond each need and gives back only above 8 MiB spare, so its
+  // growths hold whole huge pages.
+  static const bool tuned = mallopt(M_TOP_PAD, 4 << 20) && mallopt(M_TRIM_THRESHOLD, 8 << 20);
+  (void)tuned;
+  const auto end = reinterpret_cast<std::uintptr_t>(sbrk(0));
+  std::uintptr_t before = advised_end.load(std::memory_order_relaxed);
+  if (end == before || !advised_end.compare_exchange_strong(before, end)) return;
+  if (before != 0 && end > before) advise(before, end);
+}
 }  // namespace
 
 // Every block comes from malloc, so every delete is free (the standard's default delete
-// forms forward here); madvise only marks the whole huge pages inside a large block.
+// forms forward here).
 void* operator new(std::size_t n) {
   void* p = std::malloc(n ? n : 1);
   if (!p) throw std::bad_alloc();
-  if (n >= kHugePage) {
-    const auto b = reinterpret_cast<std::uintptr_t>(p);
-    const std::uintptr_t first = (b + kHugePage - 1) & ~(kHugePage - 1);
-    const std::uintptr_t last = (b + n) & ~(kHugePage - 1);
-    if (last > first)  // advice only: a kernel without THP refuses it, and nothing changes
-      (void)madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
-  }
+  if (n >= kHugePage)
+    advise(reinterpret_cast<std::uintptr_t>(p), reinterpret_cast<std::uintptr_t>(p) + n);
+  advise_heap_growth();
   return p;
 }
 
