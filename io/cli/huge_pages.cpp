@@ -8,7 +8,15 @@
 // (best of 5): eval 0.19 -> 0.12 s, info 0.29 -> 0.20 s, interpolate 0.26 -> 0.18 s, peak
 // RSS within 3 MB. The library is untouched: a program of its own gets the same from glibc
 // with GLIBC_TUNABLES=glibc.malloc.hugetlb=1. Sanitized builds keep their own operator new.
-#if !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)  // GCC
+#define QMOTION_SANITIZED 1
+#elif defined(__has_feature)  // Clang
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) || \
+    __has_feature(memory_sanitizer)
+#define QMOTION_SANITIZED 1
+#endif
+#endif
+#ifndef QMOTION_SANITIZED
 #include <malloc.h>
 #include <sys/mman.h>
 #include <unistd.h>
