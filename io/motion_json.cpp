@@ -59,8 +59,8 @@ std::optional<sweep::MotionFactors<Scalar>> read_factors(const MotionFile& f,
                                                          const kernel::QMotion<Scalar>& m,
                                                          Conv conv) {
   const json& me = f.method;
-  const auto has = [&](const char* key) {
-    return f.factor_rows.count(key) > 0 || (me.is_object() && me.contains(key));
+  const auto has = [&](const char* key) {  // (asked only of an object)
+    return f.factor_rows.count(key) > 0 || me.contains(key);
   };
   if (!me.is_object() || !has("rotation_control_points") || !has("translation_control_points") ||
       !me.contains("translation"))

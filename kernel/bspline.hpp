@@ -10,11 +10,6 @@
 
 namespace qmotion::kernel {
 
-/// B-spline function with coefficients in any ring of kernel/coefficient.hpp, on a clamped
-/// knot vector (poles + degree + 1 entries, first and last value degree+1 times, interior
-/// multiplicities at most degree+1: degree+1 is a break, which derivatives can need). A value
-/// class: the factory validates the invariant.
-/// @see Piegl & Tiller, The NURBS Book, ch. 2-5; Ramshaw 1989 for blossoms
 /// Index j with T[j] <= t < T[j+1] of a degree-p knot vector T with n poles (the last
 /// non-empty span for t >= its end, the first for t before its start).
 template <typename Scalar>
@@ -28,6 +23,11 @@ int knot_span(const std::vector<Scalar>& T, int p, int n, const Scalar& t) {
   return std::max(p, static_cast<int>(it - T.begin()) - 1);
 }
 
+/// B-spline function with coefficients in any ring of kernel/coefficient.hpp, on a clamped
+/// knot vector (poles + degree + 1 entries, first and last value degree+1 times, interior
+/// multiplicities at most degree+1: degree+1 is a break, which derivatives can need). A value
+/// class: the factory validates the invariant.
+/// @see Piegl & Tiller, The NURBS Book, ch. 2-5; Ramshaw 1989 for blossoms
 template <typename Coef>
 class BSpline {
  public:

@@ -144,18 +144,11 @@ inline Approximation approximate_homogeneous(const std::vector<kernel::BSpline<E
                                              int degree, double tol) {
   using detail::Break;
   const int D = degree;
-  const auto& Tin = h.front().knots();
-  const int p = h.front().degree();
   const double a = h.front().a(), b = h.front().b(), target = 0.9 * tol;
   std::vector<Break> br{{a, 0, 0}};
-  for (std::size_t i = static_cast<std::size_t>(p) + 1;
-       i + static_cast<std::size_t>(p) + 1 < Tin.size();) {
-    std::size_t k = i;
-    while (k < Tin.size() && Tin[k] == Tin[i]) ++k;
-    const int continuity = p - static_cast<int>(k - i);
-    br.push_back({Tin[i], 1, std::max(1, std::min(D, D - continuity))});
-    i = k;
-  }
+  for (const double x : h.front().breakpoints())
+    if (x > a && x < b)
+      br.push_back({x, 1, std::clamp(D - kernel::continuity_at(h.front(), x), 1, D)});
   br.push_back({b, 0, 0});
   const std::size_t input_spans = br.size() - 1;
   std::optional<detail::SpanFit> best;

@@ -69,12 +69,6 @@ inline double frame_distance(const Eigen::Matrix4d& f, const Eigen::Matrix4d& g,
   return d;
 }
 
-/// The index j of the knot span [T_j, T_j+1) holding t, within [p, n - 1].
-inline int knot_span(const std::vector<double>& T, int p, int n, double t) {
-  const auto it = std::upper_bound(T.begin() + p, T.begin() + n, t);
-  return std::clamp(static_cast<int>(it - T.begin()) - 1, p, n - 1);
-}
-
 }  // namespace detail
 
 /// Fits the rigid maps `frame(t)` (4x4, row 0 = (1, 0, 0, 0)) of a motion on
@@ -122,7 +116,7 @@ inline FrameFit fit_frames(const std::function<Eigen::Matrix4d(double)>& frame,
       for (std::size_t k = 0; k + 1 < x.size(); ++k)
         for (int s = 0; s < S; ++s) {
           const double t = x[k] + (x[k + 1] - x[k]) * (s + 0.5) / S;
-          const int j = detail::knot_span(T, d, n, t);
+          const int j = kernel::knot_span(T, d, n, t);
           const auto B = kernel::basis_functions(T, j, d, t);
           Row y = detail::frame_row(frame(t));
           for (int i = 0; i <= d; ++i) {
@@ -157,7 +151,7 @@ inline FrameFit fit_frames(const std::function<Eigen::Matrix4d(double)>& frame,
       std::vector<double> dev(x.size() - 1, 0.0);
       worst = 0;
       auto at = [&](std::size_t k, double t) {
-        const int j = detail::knot_span(T, d, n, t);
+        const int j = kernel::knot_span(T, d, n, t);
         const auto B = kernel::basis_functions(T, j, d, t);
         Eigen::Matrix4d m = Eigen::Matrix4d::Zero();
         for (int i = 0; i <= d; ++i)
