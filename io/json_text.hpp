@@ -1,6 +1,8 @@
 // io/json_text.hpp: a streaming JSON writer for the large documents (NURBS, motion files):
 // no tree, members in the sorted order nlohmann's tree writes them, shortest round-trip
-// numbers. Small values (names, method records) go through nlohmann.
+// numbers. Small values (names, method records) go through nlohmann. Long arrays are
+// formatted in blocks on every core and joined in order, so the bytes never depend on the
+// number of cores.
 #pragma once
 #include <algorithm>
 #include <charconv>
@@ -51,10 +53,12 @@ class JsonText {
   void value(const nlohmann::json& v) { out += v.dump(); }
   void numbers(const std::vector<double>& v) {
     out += '[';
-    for (std::size_t i = 0; i < v.size(); ++i) {
-      if (i) out += ',';
-      number(v[i]);
-    }
+    blocks(v.size(), 1, [&v](JsonText& t, std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) {
+        if (i) t.out += ',';
+        t.number(v[i]);
+      }
+    });
     out += ']';
   }
   template <typename Vec>
@@ -67,22 +71,33 @@ class JsonText {
     out += ']';
   }
   void indent(int depth) { out.append(static_cast<std::size_t>(depth), ' '); }
-  /// An array of `n` items, each on its own line at depth + 1.
+  /// An array of `n` items, each on its own line at depth + 1: item(t, i) writes item i
+  /// into t, which is this text or one of its blocks (see blocks); an item has about
+  /// `numbers_each` numbers.
   template <typename F>
-  void lines(std::size_t n, int depth, F item) {
+  void lines(std::size_t n, int depth, std::size_t numbers_each, F item) {
     if (n == 0) {
       out += "[]";
       return;
     }
     out += "[\n";
-    for (std::size_t i = 0; i < n; ++i) {
-      indent(depth + 1);
-      item(i);
-      out += i + 1 < n ? ",\n" : "\n";
-    }
+    blocks(n, numbers_each, [&](JsonText& t, std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) {
+        t.indent(depth + 1);
+        item(t, i);
+        t.out += i + 1 < n ? ",\n" : "\n";
+      }
+    });
     indent(depth);
     out += ']';
   }
+
+  /// Appends what emit(t, begin, end) writes for items [begin, end) of `n`, as emit(*this,
+  /// 0, n) would. When there are enough numbers to pay (`numbers_each` an item), the items
+  /// are cut into blocks formatted in parallel (oneTBB) into texts of their own and
+  /// appended in order, a bounded number of blocks at a time.
+  using Emit = std::function<void(JsonText&, std::size_t, std::size_t)>;
+  void blocks(std::size_t n, std::size_t numbers_each, const Emit& emit);
 
   using Members = std::vector<std::pair<std::string, std::function<void(int)>>>;
   /// An object whose members are written by the functions (given the depth), in sorted key

@@ -240,14 +240,15 @@ void method_text(JsonText& t, const kernel::Motion<double>& m, const PoseSet* in
     const bool spline = m.curve.basis == kernel::Basis::bspline;
     add("rotation_control_points", [&t, &f](int d) {
       const auto& c = f.rotation.ctrl();
-      t.lines(c.size(), d, [&](std::size_t i) {
-        t.point(std::array<double, 4>{c[i].w(), c[i].x(), c[i].y(), c[i].z()}, 4);
+      t.lines(c.size(), d, 4, [&](JsonText& b, std::size_t i) {
+        b.point(std::array<double, 4>{c[i].w(), c[i].x(), c[i].y(), c[i].z()}, 4);
       });
     });
     if (spline) add("rotation_knots", knots(f.rotation.knots()));
     auto vec = [&](const std::string& name, const kernel::BSpline<Eigen::Vector3d>& v) {
       members.emplace_back(name + "_control_points", [&t, &v](int d) {
-        t.lines(v.ctrl().size(), d, [&](std::size_t i) { t.point(v.ctrl()[i], 3); });
+        t.lines(v.ctrl().size(), d, 3,
+                [&](JsonText& b, std::size_t i) { b.point(v.ctrl()[i], 3); });
       });
       if (spline) members.emplace_back(name + "_knots", knots(v.knots()));
     };
@@ -675,7 +676,7 @@ std::string motion_json_text(const kernel::Motion<double>& m, const PoseSet* inp
        }},
       {"units", [&t, &m](int) { t.string(m.units); }},
       {"control_points", [&t, &ctrl](int d) {
-         t.lines(ctrl.size(), d, [&](std::size_t i) { t.point(ctrl[i], 8); });
+         t.lines(ctrl.size(), d, 8, [&](JsonText& b, std::size_t i) { b.point(ctrl[i], 8); });
        }}};
   if (m.provenance || m.factors)
     members.emplace_back("method", [&](int d) { method_text(t, m, input_poses, d); });

@@ -18,69 +18,79 @@ std::vector<double> read_array(const json& j, const std::string& where) {
 }
 
 /// The NURBS documents streamed: one pole a line.
-class Text : public JsonText {
- public:
-  void curve(const sweep::NurbsCurve<double>& c, const json& extra, int depth) {
-    object({{"type", [this](int) { out += "\"nurbs_curve\""; }},
-            {"degree", [this, &c](int) { integer(c.degree); }},
-            {"knots", [this, &c](int) { numbers(c.knots); }},
+void curve_text(JsonText& t, const sweep::NurbsCurve<double>& c, const json& extra, int depth) {
+  t.object({{"type", [&t](int) { t.out += "\"nurbs_curve\""; }},
+            {"degree", [&t, &c](int) { t.integer(c.degree); }},
+            {"knots", [&t, &c](int) { t.numbers(c.knots); }},
             {"control_points",
-             [this, &c](int d) {
-               lines(c.points.size(), d, [&](std::size_t i) { point(c.points[i], 3); });
+             [&t, &c](int d) {
+               t.lines(c.points.size(), d, 3,
+                       [&](JsonText& b, std::size_t i) { b.point(c.points[i], 3); });
              }},
-            {"weights", [this, &c](int) { numbers(c.weights); }}},
+            {"weights", [&t, &c](int) { t.numbers(c.weights); }}},
            extra, depth);
-  }
+}
 
-  void surface(const sweep::NurbsSurface<double>& s, const json& extra, int depth) {
-    object({{"type", [this](int) { out += "\"nurbs_surface\""; }},
-            {"degree_u", [this, &s](int) { integer(s.degree_u); }},
-            {"degree_v", [this, &s](int) { integer(s.degree_v); }},
-            {"knots_u", [this, &s](int) { numbers(s.knots_u); }},
-            {"knots_v", [this, &s](int) { numbers(s.knots_v); }},
+std::size_t pole_count(const sweep::NurbsSurface<double>& s) {
+  std::size_t poles = 0;
+  for (const auto& row : s.points) poles += row.size();
+  return poles;
+}
+
+void surface_text(JsonText& t, const sweep::NurbsSurface<double>& s, const json& extra, int depth) {
+  const std::size_t row = s.points.empty() ? 0 : s.points.front().size();
+  t.object({{"type", [&t](int) { t.out += "\"nurbs_surface\""; }},
+            {"degree_u", [&t, &s](int) { t.integer(s.degree_u); }},
+            {"degree_v", [&t, &s](int) { t.integer(s.degree_v); }},
+            {"knots_u", [&t, &s](int) { t.numbers(s.knots_u); }},
+            {"knots_v", [&t, &s](int) { t.numbers(s.knots_v); }},
             {"control_points",
-             [this, &s](int d) {
-               lines(s.points.size(), d, [&](std::size_t i) {
-                 lines(s.points[i].size(), d + 1, [&](std::size_t j) { point(s.points[i][j], 3); });
+             [&t, &s, row](int d) {
+               t.lines(s.points.size(), d, 3 * row, [&](JsonText& r, std::size_t i) {
+                 r.lines(s.points[i].size(), d + 1, 3,
+                         [&](JsonText& b, std::size_t j) { b.point(s.points[i][j], 3); });
                });
              }},
             {"weights",
-             [this, &s](int d) {
-               lines(s.weights.size(), d, [&](std::size_t i) { numbers(s.weights[i]); });
+             [&t, &s, row](int d) {
+               t.lines(s.weights.size(), d, row,
+                       [&](JsonText& r, std::size_t i) { r.numbers(s.weights[i]); });
              }}},
            extra, depth);
-  }
-};
+}
 
 }  // namespace
 
 std::string curve_json_text(const sweep::NurbsCurve<double>& c, const json& extra) {
-  Text t;
+  JsonText t;
   t.out.reserve(64 + c.points.size() * 72 + c.knots.size() * 24);
-  t.curve(c, extra, 0);
+  curve_text(t, c, extra, 0);
   t.out += '\n';
   return std::move(t.out);
 }
 
 std::string surface_json_text(const sweep::NurbsSurface<double>& s, const json& extra) {
-  Text t;
-  std::size_t poles = 0;
-  for (const auto& row : s.points) poles += row.size();
-  t.out.reserve(256 + poles * 96);
-  t.surface(s, extra, 0);
+  JsonText t;
+  t.out.reserve(256 + pole_count(s) * 96);
+  surface_text(t, s, extra, 0);
   t.out += '\n';
   return std::move(t.out);
 }
 
 std::string shell_json_text(const std::vector<sweep::NurbsSurface<double>>& faces, bool closed,
                             const json& extra) {
-  Text t;
+  JsonText t;
+  std::size_t poles = 0;
+  for (const auto& f : faces) poles += pole_count(f);
+  t.out.reserve(256 + poles * 96);
   t.object({{"type", [&t](int) { t.out += "\"nurbs_shell\""; }},
             {"closed", [&t, closed](int) { t.out += closed ? "true" : "false"; }},
             {"faces",
-             [&t, &faces](int d) {
-               t.lines(faces.size(), d,
-                       [&](std::size_t i) { t.surface(faces[i], json::object(), d + 1); });
+             [&t, &faces, poles](int d) {
+               t.lines(faces.size(), d, 4 * poles / std::max<std::size_t>(1, faces.size()),
+                       [&](JsonText& b, std::size_t i) {
+                         surface_text(b, faces[i], json::object(), d + 1);
+                       });
              }}},
            extra, 0);
   t.out += '\n';

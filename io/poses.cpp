@@ -495,15 +495,17 @@ void number_text(JsonText& t, const Number& n) {
 template <typename P, typename Write>
 void pose_lines(JsonText& t, const std::vector<P>& poses, const std::string& units, int depth,
                 Write write) {
-  t.object(
-      {{"poses", [&](int d) { t.lines(poses.size(), d, [&](std::size_t i) { write(poses[i]); }); }},
-       {"units", [&](int) { t.string(units); }}},
-      depth);
+  t.object({{"poses",
+             [&](int d) {
+               t.lines(poses.size(), d, 8, [&](JsonText& b, std::size_t i) { write(b, poses[i]); });
+             }},
+            {"units", [&](int) { t.string(units); }}},
+           depth);
 }
 }  // namespace
 
 void poses_text(JsonText& t, const PoseSet& set, int depth) {
-  auto nums = [&t](const auto* v, std::size_t n) {
+  auto nums = [](JsonText& t, const auto* v, std::size_t n) {
     t.out += '[';
     for (std::size_t i = 0; i < n; ++i) {
       if (i) t.out += ',';
@@ -511,21 +513,21 @@ void poses_text(JsonText& t, const PoseSet& set, int depth) {
     }
     t.out += ']';
   };
-  pose_lines(t, set.poses, set.units, depth, [&](const PoseInput& p) {
+  pose_lines(t, set.poses, set.units, depth, [&](JsonText& t, const PoseInput& p) {
     t.out += "{\"position\":";
-    nums(p.position.data(), 3);
+    nums(t, p.position.data(), 3);
     t.out += ",\"rotation\":{";
     const auto& v = p.rotation.values;
     switch (p.rotation.kind) {
       case RotationInput::Kind::quaternion:
         t.out += "\"quaternion\":";
-        nums(v.data(), v.size());
+        nums(t, v.data(), v.size());
         break;
       case RotationInput::Kind::matrix:
         t.out += "\"matrix\":[";
         for (std::size_t r = 0; r < 3; ++r) {
           if (r) t.out += ',';
-          nums(v.data() + 3 * r, 3);
+          nums(t, v.data() + 3 * r, 3);
         }
         t.out += ']';
         break;
@@ -533,7 +535,7 @@ void poses_text(JsonText& t, const PoseSet& set, int depth) {
         t.out += "\"axis_angle\":{\"angle_deg\":";
         number_text(t, v[3]);
         t.out += ",\"axis\":";
-        nums(v.data(), 3);
+        nums(t, v.data(), 3);
         t.out += '}';
         break;
     }
@@ -548,7 +550,7 @@ void poses_text(JsonText& t, const PoseSet& set, int depth) {
 
 void poses_text(JsonText& t, const std::vector<Pose<double>>& poses, const std::string& units,
                 int depth) {
-  pose_lines(t, poses, units, depth, [&](const Pose<double>& p) {
+  pose_lines(t, poses, units, depth, [](JsonText& t, const Pose<double>& p) {
     t.out += "{\"position\":";
     t.point(p.position, 3);
     t.out += ",\"rotation\":{\"quaternion\":";

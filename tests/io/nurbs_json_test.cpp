@@ -1,4 +1,8 @@
 // tests/io/nurbs_json_test.cpp mirrors io/nurbs_json.hpp
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <cmath>
 #include <qmotion/io/json_number.hpp>
 #include <qmotion/io/nurbs_json.hpp>
 
@@ -101,6 +105,72 @@ TEST(NurbsJson, StreamedTextIsTheTreesDocumentBitForBit) {
         io::curve_json_text(c, {{"degree", 3}});
       },
       Errc::internal, {"degree"}));
+}
+
+TEST(NurbsJson, LongArraysAreWrittenInBlocksWithTheBytesOfOneCore) {
+  // Long arrays are formatted in blocks on every core and joined: the text must be the
+  // tree's document and the very bytes a one-thread arena writes, for a long curve, a
+  // surface long in u, one long in v, and a shell of both (several waves of blocks each).
+  auto awkward = [](std::size_t i, int k) {
+    return std::sin(0.37 * double(i) + k) * std::pow(10.0, double(int(i % 7) - 3)) + 1.0 / 3;
+  };
+  sweep::NurbsCurve<double> c;
+  c.degree = 3;
+  const std::size_t n = 40001;
+  c.knots.assign(4, 0.0);
+  for (std::size_t i = 1; i + 3 < n; ++i) c.knots.push_back(double(i) / double(n - 3));
+  c.knots.insert(c.knots.end(), 4, 1.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    c.points.emplace_back(awkward(i, 0), awkward(i, 1), awkward(i, 2));
+    c.weights.push_back(1 + 0.5 * std::abs(awkward(i, 3)));
+  }
+  auto surface = [&](std::size_t rows, std::size_t cols) {
+    sweep::NurbsSurface<double> s{1, 1, {0, 0, 1, 1}, {0, 0, 1, 1}, {}, {}};
+    s.knots_u.assign(2, 0.0);
+    for (std::size_t i = 1; i + 1 < rows; ++i) s.knots_u.push_back(double(i) / double(rows - 1));
+    s.knots_u.insert(s.knots_u.end(), 2, 1.0);
+    s.knots_v.assign(2, 0.0);
+    for (std::size_t j = 1; j + 1 < cols; ++j) s.knots_v.push_back(double(j) / double(cols - 1));
+    s.knots_v.insert(s.knots_v.end(), 2, 1.0);
+    for (std::size_t i = 0; i < rows; ++i) {
+      s.points.emplace_back();
+      s.weights.emplace_back();
+      for (std::size_t j = 0; j < cols; ++j) {
+        s.points.back().emplace_back(awkward(i * cols + j, 0), awkward(j, 1), awkward(i, 2));
+        s.weights.back().push_back(2 + awkward(i + j, 3));
+      }
+    }
+    return s;
+  };
+  const auto tall = surface(20000, 4), wide = surface(3, 30000);
+  const nlohmann::json extra{{"units", "mm"}};
+  auto texts = [&] {
+    return std::vector<std::string>{
+        io::curve_json_text(c, extra), io::surface_json_text(tall, extra),
+        io::surface_json_text(wide, extra), io::shell_json_text({tall, wide}, false, extra)};
+  };
+  const auto all = texts();
+  tbb::task_arena one(1);
+  const auto single = one.execute(texts);
+  ASSERT_EQ(all.size(), single.size());
+  for (std::size_t k = 0; k < all.size(); ++k) EXPECT_TRUE(all[k] == single[k]) << "text " << k;
+  nlohmann::json tree = io::curve_to_json(c);
+  tree.update(extra);
+  EXPECT_EQ(nlohmann::json::parse(all[0]), tree);
+  // One pole a line: the curve's text has a line for each pole, none lost or doubled.
+  EXPECT_EQ(std::count(all[0].begin(), all[0].end(), '\n'), std::ptrdiff_t(n + 9));
+  const auto back = io::curve_from_json(io::parse_json(all[0], "c"), "c");
+  EXPECT_EQ(back.points, c.points);
+  EXPECT_EQ(back.weights, c.weights);
+  EXPECT_EQ(back.knots, c.knots);
+  for (const auto& [k, s] : {std::pair{1, &tall}, std::pair{2, &wide}}) {
+    nlohmann::json st = io::surface_to_json(*s);
+    st.update(extra);
+    EXPECT_EQ(nlohmann::json::parse(all[std::size_t(k)]), st) << k;
+  }
+  const auto shell = nlohmann::json::parse(all[3]);
+  EXPECT_EQ(shell["faces"][0], io::surface_to_json(tall));
+  EXPECT_EQ(shell["faces"][1], io::surface_to_json(wide));
 }
 
 TEST(NurbsJson, BadProfilesAreRefused) {
