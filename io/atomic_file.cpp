@@ -1,4 +1,5 @@
 // io/atomic_file.cpp
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <cctype>
@@ -40,18 +41,41 @@ void AtomicOutput::commit() {
   committed_ = true;
 }
 
-void write_file_atomic(const std::string& path, const std::string& content) {
-  AtomicOutput out(path);
-  {
-    std::ofstream f(out.temp_path(), std::ios::binary | std::ios::trunc);
-    if (!f)
+AtomicWriter::AtomicWriter(std::string path) : out_(std::move(path)) {
+  fd_ = ::open(out_.temp_path().c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  if (fd_ < 0)
+    throw Error(Errc::invalid_input,
+                out_.path() + ": cannot create output file: " + std::strerror(errno));
+}
+
+AtomicWriter::~AtomicWriter() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+void AtomicWriter::append(const char* data, std::size_t size) {
+  while (size > 0) {
+    const ssize_t n = ::write(fd_, data, size);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0)
       throw Error(Errc::invalid_input,
-                  path + ": cannot create output file: " + std::strerror(errno));
-    f << content;
-    f.flush();
-    if (!f) throw Error(Errc::invalid_input, path + ": write failed: " + std::strerror(errno));
+                  out_.path() + ": write failed: " + std::strerror(n < 0 ? errno : ENOSPC));
+    data += n;
+    size -= static_cast<std::size_t>(n);
   }
-  out.commit();
+}
+
+void AtomicWriter::commit() {
+  const int fd = fd_;
+  fd_ = -1;
+  if (::close(fd) != 0)
+    throw Error(Errc::invalid_input, out_.path() + ": write failed: " + std::strerror(errno));
+  out_.commit();
+}
+
+void write_file_atomic(const std::string& path, const std::string& content) {
+  AtomicWriter file(path);
+  file.append(content);
+  file.commit();
 }
 
 }  // namespace qmotion::io

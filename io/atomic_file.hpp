@@ -1,5 +1,6 @@
 // io/atomic_file.hpp
 #pragma once
+#include <cstddef>
 #include <string>
 
 namespace qmotion::io {
@@ -23,6 +24,25 @@ class AtomicOutput {
  private:
   std::string path_, temp_;
   bool committed_ = false;
+};
+
+/// An AtomicOutput written in pieces: append() writes to the temporary file, commit()
+/// closes it and renames it onto the path. Throws Errc::invalid_input naming the path when
+/// the file cannot be created or written.
+class AtomicWriter {
+ public:
+  explicit AtomicWriter(std::string path);
+  ~AtomicWriter();
+  AtomicWriter(const AtomicWriter&) = delete;
+  AtomicWriter& operator=(const AtomicWriter&) = delete;
+
+  void append(const char* data, std::size_t size);
+  void append(const std::string& s) { append(s.data(), s.size()); }
+  void commit();
+
+ private:
+  AtomicOutput out_;
+  int fd_ = -1;
 };
 
 /// The extension of the file name in `path`, lower case, with its dot (".step"); "" when

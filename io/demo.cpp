@@ -76,13 +76,13 @@ json write_demo(const std::string& dir) {
   opt.form = "bezier";
   const InterpolatedMotion interpolated = interpolate(set, opt);
   const std::string& summary = interpolated.summary;
-  write_file_atomic((tmp / "motion.json").string(), interpolated.text());
+  interpolated.save((tmp / "motion.json").string());
   kernel::Motion<double> lm = interpolated.motion;
   lm.name = "motion.json";  // what the files' headers cite
   // The paper's Figure 5 idea: a parabola of the moving space swept by the motion.
   const sweep::NurbsCurve<double> parabola{
       2, {0, 0, 0, 1, 1, 1}, {{-10, 0, 10}, {0, 0, -10}, {10, 0, 10}}, {1, 1, 1}};
-  write_file_atomic((tmp / "parabola.json").string(), curve_json_text(parabola));
+  write_curve_json((tmp / "parabola.json").string(), parabola);
 
   json report = json::array();
   for (const std::string ext : {".json", ".step", ".igs"}) {

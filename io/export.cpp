@@ -259,7 +259,7 @@ void write_curve(const sweep::NurbsCurve<double>& c, Format f, const std::string
     case Format::json: {
       json extra{{"units", r.units}, {"continuity", r.continuity_u}};
       if (!approximation.is_null()) extra["approximation"] = approximation;
-      write_file_atomic(path, curve_json_text(c, extra));
+      write_curve_json(path, c, extra);
       break;
     }
     case Format::step:
@@ -375,8 +375,10 @@ void write_surfaces(const std::vector<sweep::NurbsSurface<double>>& surfaces, Fo
       json extra{{"units", r.units}, {"continuity", {r.continuity_u, r.continuity_v}}};
       if (!approximation.is_null()) extra["approximation"] = approximation;
       if (!one_surface && opt.solid) extra["volume"] = *r.volume;
-      write_file_atomic(opt.output, one_surface ? surface_json_text(surfaces.front(), extra)
-                                                : shell_json_text(surfaces, opt.solid, extra));
+      if (one_surface)
+        write_surface_json(opt.output, surfaces.front(), extra);
+      else
+        write_shell_json(opt.output, surfaces, opt.solid, extra);
       r.faces = static_cast<int>(surfaces.size());
       r.poles = count_poles(surfaces);
       return;

@@ -3,6 +3,7 @@
 #include <sstream>
 
 #ifdef QMOTION_WITH_CGAL
+#include <qmotion/io/atomic_file.hpp>
 #include <qmotion/io/exact_number.hpp>
 #endif
 #include <qmotion/kernel/error.hpp>
@@ -205,6 +206,13 @@ json InterpolatedMotion::document() const {
 std::string InterpolatedMotion::text() const {
   if (!exact_document.is_null()) return exact_document.dump(1) + "\n";
   return motion_json_text(motion, &input);
+}
+
+void InterpolatedMotion::save(const std::string& path) const {
+  if (!exact_document.is_null())
+    write_file_atomic(path, text());
+  else
+    write_motion_json(path, motion, &input);
 }
 
 }  // namespace qmotion::io

@@ -40,6 +40,8 @@ struct InterpolatedMotion {
   /// The same document as JSON text (what `qmotion interpolate` writes): streamed without a
   /// tree (motion_json_text) for double motions.
   std::string text() const;
+  /// Writes text() to `path` atomically; the streamed text is never held whole.
+  void save(const std::string& path) const;
 };
 
 /// The parametrisation rule `name` (`--param`) for the poses; empty: `given` when every

@@ -19,6 +19,16 @@ namespace qmotion::io {
 class JsonText {
  public:
   std::string out;
+  /// Where finished text goes while it is made (a file being written), when set: blocks()
+  /// hands `out` and its blocks over as they are ready, so a long document is never held
+  /// whole, and finish() hands over the rest. Unset: everything stays in `out`.
+  std::function<void(const std::string&)> sink;
+  void finish() {
+    if (sink && !out.empty()) {
+      sink(out);
+      out.clear();
+    }
+  }
 
   /// Shortest text that reads back as `v` (std::to_chars); -0 as "-0.0" ("-0" would read
   /// back as the integer 0); null for non-finite numbers, as nlohmann writes them.
@@ -94,8 +104,9 @@ class JsonText {
 
   /// Appends what emit(t, begin, end) writes for items [begin, end) of `n`, as emit(*this,
   /// 0, n) would. When there are enough numbers to pay (`numbers_each` an item), the items
-  /// are cut into blocks formatted in parallel (oneTBB) into texts of their own and
-  /// appended in order, a bounded number of blocks at a time.
+  /// are cut into blocks formatted in parallel (oneTBB) into texts of their own, a wave of
+  /// blocks at a time; each wave is appended (or handed to the sink) in order while the
+  /// next one is being formatted.
   using Emit = std::function<void(JsonText&, std::size_t, std::size_t)>;
   void blocks(std::size_t n, std::size_t numbers_each, const Emit& emit);
 
@@ -127,5 +138,10 @@ class JsonText {
     object(std::move(members), nlohmann::json::object(), depth);
   }
 };
+
+/// Writes the JSON document write(t) makes, and a final newline, to `path` atomically as it
+/// is made (JsonText::sink): the text is never held whole. Throws Errc::invalid_input naming
+/// the path when the file cannot be written; nothing is left behind then.
+void write_json_atomic(const std::string& path, const std::function<void(JsonText&)>& write);
 
 }  // namespace qmotion::io

@@ -659,10 +659,9 @@ json motion_document(const kernel::Motion<double>& m, const json& input_poses) {
                         m.units);
 }
 
-std::string motion_json_text(const kernel::Motion<double>& m, const PoseSet* input_poses) {
-  JsonText t;
+namespace {
+void motion_text(JsonText& t, const kernel::Motion<double>& m, const PoseSet* input_poses) {
   const auto& ctrl = m.curve.curve.ctrl();
-  t.out.reserve(4096 + ctrl.size() * 200 + (input_poses ? input_poses->poses.size() * 200 : 0));
   const auto& knots = m.curve.curve.knots();
   JsonText::Members members{
       {"type", [&t](int) { t.string("q-motion"); }},
@@ -681,12 +680,25 @@ std::string motion_json_text(const kernel::Motion<double>& m, const PoseSet* inp
   if (m.provenance || m.factors)
     members.emplace_back("method", [&](int d) { method_text(t, m, input_poses, d); });
   t.object(std::move(members), 0);
+}
+}  // namespace
+
+std::string motion_json_text(const kernel::Motion<double>& m, const PoseSet* input_poses) {
+  JsonText t;
+  t.out.reserve(4096 + m.curve.curve.ctrl().size() * 200 +
+                (input_poses ? input_poses->poses.size() * 200 : 0));
+  motion_text(t, m, input_poses);
   t.out += '\n';
   return std::move(t.out);
 }
 
+void write_motion_json(const std::string& path, const kernel::Motion<double>& m,
+                       const PoseSet* input_poses) {
+  write_json_atomic(path, [&](JsonText& t) { motion_text(t, m, input_poses); });
+}
+
 void save_motion(const kernel::Motion<double>& m, const std::string& path) {
-  write_file_atomic(path, motion_json_text(m));
+  write_motion_json(path, m);
 }
 
 #ifdef QMOTION_WITH_CGAL

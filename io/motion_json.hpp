@@ -99,7 +99,11 @@ nlohmann::json motion_document(const kernel::Motion<double>& m,
 /// streamed (no tree): one control point a line, shortest round-trip numbers, members in
 /// the tree's sorted order. What save_motion and `qmotion interpolate` write.
 std::string motion_json_text(const kernel::Motion<double>& m, const PoseSet* input_poses = nullptr);
-/// Writes motion_json_text(m) to path atomically.
+/// Writes motion_json_text(m, input_poses) to `path` atomically as it is made, never held
+/// whole (write_json_atomic).
+void write_motion_json(const std::string& path, const kernel::Motion<double>& m,
+                       const PoseSet* input_poses = nullptr);
+/// write_motion_json(path, m).
 void save_motion(const kernel::Motion<double>& m, const std::string& path);
 
 #ifdef QMOTION_WITH_CGAL

@@ -59,30 +59,10 @@ void surface_text(JsonText& t, const sweep::NurbsSurface<double>& s, const json&
            extra, depth);
 }
 
-}  // namespace
-
-std::string curve_json_text(const sweep::NurbsCurve<double>& c, const json& extra) {
-  JsonText t;
-  t.out.reserve(64 + c.points.size() * 72 + c.knots.size() * 24);
-  curve_text(t, c, extra, 0);
-  t.out += '\n';
-  return std::move(t.out);
-}
-
-std::string surface_json_text(const sweep::NurbsSurface<double>& s, const json& extra) {
-  JsonText t;
-  t.out.reserve(256 + pole_count(s) * 96);
-  surface_text(t, s, extra, 0);
-  t.out += '\n';
-  return std::move(t.out);
-}
-
-std::string shell_json_text(const std::vector<sweep::NurbsSurface<double>>& faces, bool closed,
-                            const json& extra) {
-  JsonText t;
+void shell_text(JsonText& t, const std::vector<sweep::NurbsSurface<double>>& faces, bool closed,
+                const json& extra) {
   std::size_t poles = 0;
   for (const auto& f : faces) poles += pole_count(f);
-  t.out.reserve(256 + poles * 96);
   t.object({{"type", [&t](int) { t.out += "\"nurbs_shell\""; }},
             {"closed", [&t, closed](int) { t.out += closed ? "true" : "false"; }},
             {"faces",
@@ -93,8 +73,49 @@ std::string shell_json_text(const std::vector<sweep::NurbsSurface<double>>& face
                        });
              }}},
            extra, 0);
+}
+
+/// The document write(t) makes, whole, with its final newline; `reserve` bytes ahead.
+template <typename Write>
+std::string whole_text(std::size_t reserve, Write write) {
+  JsonText t;
+  t.out.reserve(reserve);
+  write(t);
   t.out += '\n';
   return std::move(t.out);
+}
+}  // namespace
+
+std::string curve_json_text(const sweep::NurbsCurve<double>& c, const json& extra) {
+  return whole_text(64 + c.points.size() * 72 + c.knots.size() * 24,
+                    [&](JsonText& t) { curve_text(t, c, extra, 0); });
+}
+
+std::string surface_json_text(const sweep::NurbsSurface<double>& s, const json& extra) {
+  return whole_text(256 + pole_count(s) * 96, [&](JsonText& t) { surface_text(t, s, extra, 0); });
+}
+
+std::string shell_json_text(const std::vector<sweep::NurbsSurface<double>>& faces, bool closed,
+                            const json& extra) {
+  std::size_t poles = 0;
+  for (const auto& f : faces) poles += pole_count(f);
+  return whole_text(256 + poles * 96, [&](JsonText& t) { shell_text(t, faces, closed, extra); });
+}
+
+void write_curve_json(const std::string& path, const sweep::NurbsCurve<double>& c,
+                      const json& extra) {
+  write_json_atomic(path, [&](JsonText& t) { curve_text(t, c, extra, 0); });
+}
+
+void write_surface_json(const std::string& path, const sweep::NurbsSurface<double>& s,
+                        const json& extra) {
+  write_json_atomic(path, [&](JsonText& t) { surface_text(t, s, extra, 0); });
+}
+
+void write_shell_json(const std::string& path,
+                      const std::vector<sweep::NurbsSurface<double>>& faces, bool closed,
+                      const json& extra) {
+  write_json_atomic(path, [&](JsonText& t) { shell_text(t, faces, closed, extra); });
 }
 
 json curve_to_json(const sweep::NurbsCurve<double>& c) {

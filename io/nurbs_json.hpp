@@ -24,6 +24,15 @@ std::string surface_json_text(const sweep::NurbsSurface<double>& s,
 /// {"type":"nurbs_shell","closed","faces":[nurbs_surface...]} plus `extra`.
 std::string shell_json_text(const std::vector<sweep::NurbsSurface<double>>& faces, bool closed,
                             const nlohmann::json& extra = nlohmann::json::object());
+/// The same documents written to `path` atomically as they are made, never held whole
+/// (write_json_atomic); Errc::invalid_input naming the path when it cannot be written.
+void write_curve_json(const std::string& path, const sweep::NurbsCurve<double>& c,
+                      const nlohmann::json& extra = nlohmann::json::object());
+void write_surface_json(const std::string& path, const sweep::NurbsSurface<double>& s,
+                        const nlohmann::json& extra = nlohmann::json::object());
+void write_shell_json(const std::string& path,
+                      const std::vector<sweep::NurbsSurface<double>>& faces, bool closed,
+                      const nlohmann::json& extra = nlohmann::json::object());
 
 /// Reads and validates a nurbs_curve (clamped knots, finite poles, positive finite
 /// weights); throws Errc::invalid_input naming `where` and the field.

@@ -55,7 +55,7 @@ Command add_interpolate(CLI::App& app) {
                         << os.str()
                         << ": trajectories are unbounded there and cannot be exported\n";
             }
-            io::write_file_atomic(o->output, r.text());
+            r.save(o->output);
             std::cerr << "qmotion: wrote " << o->output << " (" << r.summary << ")\n";
             return 0;
           }};

@@ -126,14 +126,17 @@ const nlohmann::json kTrajectoryExtra{{"units", "mm"}, {"continuity", 2}};
 void BM_WriteTrajectoryJson(benchmark::State& state) {  // streamed (trajectory -o .json)
   const auto& c = trajectory(static_cast<int>(state.range(0)));
   const std::string path = "bench_io_trajectory.json";
-  std::size_t bytes = 0;
-  for (auto _ : state) {
-    const std::string text = io::curve_json_text(c, kTrajectoryExtra);
-    io::write_file_atomic(path, text);
-    bytes = text.size();
-  }
+  for (auto _ : state) io::write_curve_json(path, c, kTrajectoryExtra);
+  const std::size_t bytes = io::read_text_file(path).size();
   std::remove(path.c_str());
   state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations() * bytes));
+}
+
+void BM_WriteTrajectoryJsonWhole(benchmark::State& state) {  // the text whole, then written
+  const auto& c = trajectory(static_cast<int>(state.range(0)));
+  const std::string path = "bench_io_trajectory_whole.json";
+  for (auto _ : state) io::write_file_atomic(path, io::curve_json_text(c, kTrajectoryExtra));
+  std::remove(path.c_str());
 }
 
 void BM_TrajectoryJsonTextOnly(benchmark::State& state) {  // the formatting share
@@ -164,6 +167,7 @@ void BM_OfstreamSameTrajectoryBytes(benchmark::State& state) {  // the floor
 }  // namespace
 
 BENCHMARK(BM_WriteTrajectoryJson)->Arg(100)->Arg(10000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_WriteTrajectoryJsonWhole)->Arg(100)->Arg(10000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_TrajectoryJsonTextOnly)->Arg(100)->Arg(10000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WriteTrajectoryJsonTree)->Arg(100)->Arg(10000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_OfstreamSameTrajectoryBytes)->Arg(100)->Arg(10000)->Unit(benchmark::kMillisecond);

@@ -34,6 +34,29 @@ TEST(AtomicFile, UncommittedOutputLeavesNothing) {
   EXPECT_TRUE(fs::is_empty(d));
 }
 
+TEST(AtomicFile, AWriterInPiecesAppearsWholeOnCommitAndNotBefore) {
+  const auto d = scratch("pieces");
+  const auto path = (d / "c.json").string();
+  {
+    io::AtomicWriter w(path);
+    w.append("{\"x\": ");
+    w.append(std::string(100000, '1'));
+    EXPECT_FALSE(fs::exists(path));
+    w.append("}");
+    w.commit();
+  }
+  EXPECT_EQ(io::read_text_file(path), "{\"x\": " + std::string(100000, '1') + "}");
+  EXPECT_EQ(std::distance(fs::directory_iterator(d), fs::directory_iterator()), 1);
+  {
+    io::AtomicWriter w((d / "d.json").string());
+    w.append("partial");  // no commit: as when a writer throws halfway
+  }
+  EXPECT_FALSE(fs::exists(d / "d.json"));
+  EXPECT_EQ(std::distance(fs::directory_iterator(d), fs::directory_iterator()), 1);
+  EXPECT_TRUE(throws_error([] { io::AtomicWriter w("/nonexistent-dir/out.json"); },
+                           Errc::invalid_input, {"/nonexistent-dir/out.json", "cannot create"}));
+}
+
 TEST(AtomicFile, UnwritableFolderIsBadInputNamingThePath) {
   EXPECT_TRUE(throws_error([] { io::write_file_atomic("/nonexistent-dir/out.json", "x"); },
                            Errc::invalid_input, {"/nonexistent-dir/out.json"}));

@@ -1,10 +1,15 @@
 // tests/io/motion_json_test.cpp mirrors io/motion_json.hpp
+#include <tbb/task_arena.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <qmotion/io/exact_number.hpp>
 #include <qmotion/io/interpolate.hpp>
 #include <qmotion/io/motion_json.hpp>
 #include <qmotion/io/poses.hpp>
+#include <sstream>
 
 #include "io_test_util.hpp"
 
@@ -168,6 +173,45 @@ TEST(MotionJson, StreamedTextIsTheTreesDocumentAndReadsBackBitForBit) {
   // A hand-written motion (no method block) streams to its own document.
   const kernel::Motion<double> hand = io::load_motion(kExamples + "/motions/bspline_tr.json");
   EXPECT_EQ(nlohmann::json::parse(io::motion_json_text(hand)), io::motion_document(hand));
+}
+
+TEST(MotionJson, LongMotionsAreWrittenInBlocksWithTheBytesOfOneCore) {
+  // 3000 poses: the control points, the knots and the echoed poses are long enough to be
+  // formatted in blocks on every core; the text must be the one-thread text, the file
+  // save() streams must be that text, and it must read back to the same motion.
+  std::ostringstream os;
+  os.precision(17);
+  os << R"({"units": "mm", "poses": [)";
+  const int n = 3000;
+  for (int i = 0; i < n; ++i) {
+    const double t = double(i) / (n - 1), a = t * 20 * M_PI, h = a / 2 + 0.3 * std::sin(7 * t);
+    os << (i ? "," : "") << R"({"position": [)" << 60 * std::cos(a) << ", " << 60 * std::sin(a)
+       << ", " << 400 * t << R"(], "rotation": {"quaternion": [)" << std::cos(h / 2) << ", "
+       << std::sin(h / 2) * 0.6 << ", 0, " << std::sin(h / 2) * 0.8 << "]}}";
+  }
+  os << "]}";
+  io::InterpolateOptions o;
+  o.form = "bspline";
+  const io::InterpolatedMotion made = io::interpolate(io::parse_poses_json(os.str(), "helix"), o);
+  const std::string text = made.text();
+  tbb::task_arena one(1);
+  EXPECT_TRUE(one.execute([&] { return made.text(); }) == text);
+  namespace fs = std::filesystem;
+  const fs::path d = fs::temp_directory_path() / ("qmotion_mblocks_" + std::to_string(::getpid()));
+  fs::create_directories(d);
+  made.save((d / "m.json").string());
+  EXPECT_TRUE(io::read_text_file((d / "m.json").string()) == text);
+  io::save_motion(made.motion, (d / "plain.json").string());
+  EXPECT_TRUE(io::read_text_file((d / "plain.json").string()) == io::motion_json_text(made.motion));
+  fs::remove_all(d);
+  EXPECT_EQ(nlohmann::json::parse(text), made.document());
+  const kernel::Motion<double> back = io::to_motion(io::parse_motion_text(text, "long"));
+  EXPECT_EQ(back.curve.curve.ctrl(), made.motion.curve.curve.ctrl());
+  EXPECT_EQ(back.curve.curve.knots(), made.motion.curve.curve.knots());
+  const auto poses = io::recorded_input_poses(io::parse_motion_text(text, "long"));
+  ASSERT_TRUE(poses);
+  ASSERT_EQ(poses->poses.size(), std::size_t(n));
+  EXPECT_EQ(poses->poses.back().position[0].value, made.input.poses.back().position[0].value);
 }
 
 TEST(MotionJson, ControlPointsReadLeanKeepTheirExactDecimals) {

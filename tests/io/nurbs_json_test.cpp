@@ -1,9 +1,12 @@
 // tests/io/nurbs_json_test.cpp mirrors io/nurbs_json.hpp
 #include <tbb/task_arena.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <qmotion/io/json_number.hpp>
+#include <qmotion/io/json_text.hpp>
 #include <qmotion/io/nurbs_json.hpp>
 
 #include "io_test_util.hpp"
@@ -171,6 +174,41 @@ TEST(NurbsJson, LongArraysAreWrittenInBlocksWithTheBytesOfOneCore) {
   const auto shell = nlohmann::json::parse(all[3]);
   EXPECT_EQ(shell["faces"][0], io::surface_to_json(tall));
   EXPECT_EQ(shell["faces"][1], io::surface_to_json(wide));
+
+  // Written to files as they are made (never held whole): the same bytes.
+  namespace fs = std::filesystem;
+  const fs::path d = fs::temp_directory_path() / ("qmotion_blocks_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  io::write_curve_json((d / "c.json").string(), c, extra);
+  io::write_surface_json((d / "tall.json").string(), tall, extra);
+  io::write_surface_json((d / "wide.json").string(), wide, extra);
+  io::write_shell_json((d / "shell.json").string(), {tall, wide}, false, extra);
+  EXPECT_TRUE(io::read_text_file((d / "c.json").string()) == all[0]);
+  EXPECT_TRUE(io::read_text_file((d / "tall.json").string()) == all[1]);
+  EXPECT_TRUE(io::read_text_file((d / "wide.json").string()) == all[2]);
+  EXPECT_TRUE(io::read_text_file((d / "shell.json").string()) == all[3]);
+
+  // A sink that fails halfway (a full disk) stops the writer with its error while blocks
+  // are still being formatted, and the file is not left behind.
+  int calls = 0;
+  io::JsonText t;
+  t.sink = [&calls](const std::string&) {
+    if (++calls == 3) throw Error(Errc::invalid_input, "out.json: write failed: disk full");
+  };
+  EXPECT_TRUE(throws_error([&] { t.numbers(c.knots); }, Errc::invalid_input, {"disk full"}));
+  EXPECT_EQ(calls, 3);
+  EXPECT_TRUE(throws_error(
+      [&] {
+        io::write_json_atomic((d / "half.json").string(), [&](io::JsonText& w) {
+          w.numbers(c.weights);
+          throw Error(Errc::invalid_input, "stopped halfway");
+        });
+      },
+      Errc::invalid_input, {"halfway"}));
+  EXPECT_FALSE(fs::exists(d / "half.json"));
+  EXPECT_EQ(std::distance(fs::directory_iterator(d), fs::directory_iterator()), 4);
+  fs::remove_all(d);
 }
 
 TEST(NurbsJson, BadProfilesAreRefused) {
