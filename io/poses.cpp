@@ -399,6 +399,7 @@ PoseSet read_poses(const std::string& path) {
 
 std::vector<Pose<double>> to_poses_double(const PoseSet& set) {
   std::vector<Pose<double>> out;
+  out.reserve(set.poses.size());
   for (const auto& p : set.poses) {
     Pose<double> q;
     if (p.t) q.t = p.t->value;

@@ -50,7 +50,10 @@ void advise_heap_growth() {
   // touched page by page afresh. One arena: the writer's worker threads share the
   // advised heap instead of heaps of their own. Measured in one run (best of 9, 10^4
   // poses): trajectory -> JSON 0.270 -> 0.216 s, sweep -> JSON 0.384 -> 0.304 s,
-  // interpolate 0.178 -> 0.157 s; peak RSS 5-9 MB higher.
+  // interpolate 0.178 -> 0.157 s; peak RSS 3-9 MB higher (a block freed in the heap is
+  // kept for reuse, and a huge page counts whole once touched). A threshold of 2, 4 or
+  // 8 MiB saves 1-4 MB of that but gives back most of the time: the big blocks reused
+  // are the motion file's text and its parser's buffers.
   static const bool tuned = mallopt(M_TOP_PAD, 4 << 20) && mallopt(M_TRIM_THRESHOLD, 8 << 20) &&
                             mallopt(M_MMAP_THRESHOLD, 32 << 20) && mallopt(M_ARENA_MAX, 1);
   (void)tuned;
