@@ -211,7 +211,8 @@ std::vector<Bernstein<Coef>> bezier_pieces(const BSpline<Coef>& s) {
   const std::size_t p = static_cast<std::size_t>(s.degree());
   const std::size_t m = U.size() - 1;
   std::vector<Bernstein<Coef>> pieces;
-  pieces.reserve(m > 2 * p ? m - 2 * p : 1);  // at most one piece a knot span
+  // At most one piece a knot span.
+  pieces.reserve(m > 2 * p ? m - 2 * p : 1);
   if (p == 0) {  // piecewise constant: the poles themselves
     for (std::size_t k = 0; k < P.size(); ++k)
       if (U[k] < U[k + 1]) pieces.emplace_back(std::vector<Coef>{P[k]}, U[k], U[k + 1]);
