@@ -1,9 +1,9 @@
 // io/interpolate.cpp
+#include <qmotion/io/atomic_file.hpp>
 #include <qmotion/io/interpolate.hpp>
 #include <sstream>
 
 #ifdef QMOTION_WITH_CGAL
-#include <qmotion/io/atomic_file.hpp>
 #include <qmotion/io/exact_number.hpp>
 #endif
 #include <qmotion/kernel/error.hpp>

@@ -2,7 +2,6 @@
 #include <tbb/blocked_range.h>
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
-#include <tbb/task_group.h>
 
 #include <qmotion/io/atomic_file.hpp>
 #include <qmotion/io/json_text.hpp>
@@ -20,48 +19,33 @@ void JsonText::blocks(std::size_t n, std::size_t numbers_each, const Emit& emit)
     return;
   }
   const std::size_t count = (n + per - 1) / per;
+  // A wave of blocks at a time, formatted on every core, then appended (or handed to the
+  // sink) in order; the buffers are reused, so the text is held once and a wave more (with
+  // a sink, a wave). Handing a wave over while the next is formatted measured no faster
+  // on 2 cores: the writing thread needs the same cores.
   const std::size_t wave = std::min<std::size_t>(
       count, 4 * static_cast<std::size_t>(std::max(1, tbb::info::default_concurrency())));
-  // Two sets of buffers, reused: while one wave is formatted into `next`, the one before
-  // it (in `ready`) is appended or handed to the sink. The text is held once and two
-  // waves more; with a sink, two waves.
-  std::vector<JsonText> ready(wave), next(wave);
-  std::size_t ready_count = 0;
-  auto hand_over = [this](std::vector<JsonText>& parts, std::size_t k) {
+  std::vector<JsonText> parts(wave);
+  for (std::size_t first = 0; first < count; first += wave) {
+    const std::size_t k = std::min(count, first + wave) - first;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, k, 1),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                          const std::size_t b = first + i;
+                          parts[i].out.clear();
+                          emit(parts[i], b * per, std::min(n, (b + 1) * per));
+                        }
+                      });
     if (sink) {
       finish();
       for (std::size_t i = 0; i < k; ++i) sink(parts[i].out);
-      return;
+      continue;
     }
     std::size_t size = out.size();
     for (std::size_t i = 0; i < k; ++i) size += parts[i].out.size();
     if (size > out.capacity()) out.reserve(std::max(size, out.capacity() + out.capacity() / 2));
     for (std::size_t i = 0; i < k; ++i) out += parts[i].out;
-  };
-  for (std::size_t first = 0; first < count; first += wave) {
-    const std::size_t last = std::min(count, first + wave);
-    tbb::task_group formatting;
-    formatting.run([&] {
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(first, last, 1),
-                        [&](const tbb::blocked_range<std::size_t>& r) {
-                          for (std::size_t b = r.begin(); b != r.end(); ++b) {
-                            JsonText& t = next[b - first];
-                            t.out.clear();
-                            emit(t, b * per, std::min(n, (b + 1) * per));
-                          }
-                        });
-    });
-    try {
-      hand_over(ready, ready_count);
-    } catch (...) {
-      formatting.wait();
-      throw;
-    }
-    formatting.wait();
-    std::swap(ready, next);
-    ready_count = last - first;
   }
-  hand_over(ready, ready_count);
 }
 
 void write_json_atomic(const std::string& path, const std::function<void(JsonText&)>& write) {

@@ -105,8 +105,7 @@ class JsonText {
   /// Appends what emit(t, begin, end) writes for items [begin, end) of `n`, as emit(*this,
   /// 0, n) would. When there are enough numbers to pay (`numbers_each` an item), the items
   /// are cut into blocks formatted in parallel (oneTBB) into texts of their own, a wave of
-  /// blocks at a time; each wave is appended (or handed to the sink) in order while the
-  /// next one is being formatted.
+  /// blocks at a time; each wave is then appended (or handed to the sink) in order.
   using Emit = std::function<void(JsonText&, std::size_t, std::size_t)>;
   void blocks(std::size_t n, std::size_t numbers_each, const Emit& emit);
 

@@ -37,6 +37,12 @@ std::size_t pole_count(const sweep::NurbsSurface<double>& s) {
   return poles;
 }
 
+std::size_t pole_count(const std::vector<sweep::NurbsSurface<double>>& faces) {
+  std::size_t poles = 0;
+  for (const auto& f : faces) poles += pole_count(f);
+  return poles;
+}
+
 void surface_text(JsonText& t, const sweep::NurbsSurface<double>& s, const json& extra, int depth) {
   const std::size_t row = s.points.empty() ? 0 : s.points.front().size();
   t.object({{"type", [&t](int) { t.out += "\"nurbs_surface\""; }},
@@ -61,8 +67,7 @@ void surface_text(JsonText& t, const sweep::NurbsSurface<double>& s, const json&
 
 void shell_text(JsonText& t, const std::vector<sweep::NurbsSurface<double>>& faces, bool closed,
                 const json& extra) {
-  std::size_t poles = 0;
-  for (const auto& f : faces) poles += pole_count(f);
+  const std::size_t poles = pole_count(faces);
   t.object({{"type", [&t](int) { t.out += "\"nurbs_shell\""; }},
             {"closed", [&t, closed](int) { t.out += closed ? "true" : "false"; }},
             {"faces",
@@ -97,9 +102,8 @@ std::string surface_json_text(const sweep::NurbsSurface<double>& s, const json& 
 
 std::string shell_json_text(const std::vector<sweep::NurbsSurface<double>>& faces, bool closed,
                             const json& extra) {
-  std::size_t poles = 0;
-  for (const auto& f : faces) poles += pole_count(f);
-  return whole_text(256 + poles * 96, [&](JsonText& t) { shell_text(t, faces, closed, extra); });
+  return whole_text(256 + pole_count(faces) * 96,
+                    [&](JsonText& t) { shell_text(t, faces, closed, extra); });
 }
 
 void write_curve_json(const std::string& path, const sweep::NurbsCurve<double>& c,
