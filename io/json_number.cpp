@@ -309,7 +309,7 @@ Number parse_number_text(const std::string& raw, const std::string& where) {
                       where + ": rational '" + raw + "' has a zero denominator");
         Number n{num + "/" + den, 0.0};
 #ifdef QMOTION_WITH_CGAL
-        n.value = kernel::to_double(exact_from_text(n.text));
+        n.value = kernel::to_double(exact_from_text(n.text.str()));
 #else
         n.value = std::strtod(num.c_str(), nullptr) / std::strtod(den.c_str(), nullptr);
 #endif

@@ -487,7 +487,7 @@ bool keeps_text(const Number& n) {
 
 void number_text(JsonText& t, const Number& n) {
   if (keeps_text(n))
-    t.string(n.text);
+    t.string(n.text.str());
   else
     t.number(n.value);
 }
@@ -568,7 +568,7 @@ void poses_text(JsonText& t, const std::vector<Pose<double>>& poses, const std::
 
 json poses_to_json(const PoseSet& set) {
   auto num = [](const Number& n) -> json {
-    if (keeps_text(n)) return n.text;
+    if (keeps_text(n)) return n.text.str();
     return n.value;
   };
   json poses = json::array();

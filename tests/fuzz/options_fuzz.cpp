@@ -76,7 +76,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     default:
       fuzz::accept_refusals([&] {
         const io::Number n = io::parse_number_text(rest, "--t");
-        (void)io::exact_from_text(n.text);
+        (void)io::exact_from_text(n.text.str());
       });
   }
   return 0;

@@ -16,20 +16,24 @@ TEST(JsonNumber, FloatLiteralsKeepTheirSourceText) {
   const auto j =
       parse_json(R"({"a": 0.1, "b": [1, -2.50e-3, 12345678901234567890123], "c": "3/4"})", "mem");
   EXPECT_EQ(io::read_number(j["a"], "a").text, "0.1");
-  EXPECT_EQ(io::exact_from_text(io::read_number(j["a"], "a").text), Rational(1) / Rational(10));
-  EXPECT_EQ(io::exact_from_text(io::read_number(j["b"][1], "b").text),
+  EXPECT_EQ(io::exact_from_text(io::read_number(j["a"], "a").text.str()),
+            Rational(1) / Rational(10));
+  EXPECT_EQ(io::exact_from_text(io::read_number(j["b"][1], "b").text.str()),
             Rational(-25) / Rational(10000));
-  EXPECT_EQ(io::exact_from_text(io::read_number(j["b"][2], "b").text),
+  EXPECT_EQ(io::exact_from_text(io::read_number(j["b"][2], "b").text.str()),
             Rational("12345678901234567890123"));
   EXPECT_EQ(io::read_number(j["b"][0], "b").value, 1.0);
-  EXPECT_EQ(io::exact_from_text(io::read_number(j["c"], "c").text), Rational(3) / Rational(4));
+  EXPECT_EQ(io::exact_from_text(io::read_number(j["c"], "c").text.str()),
+            Rational(3) / Rational(4));
   EXPECT_DOUBLE_EQ(io::read_number(j["c"], "c").value, 0.75);
 }
 
 TEST(JsonNumber, RationalTextIsExactAndCanonical) {
-  EXPECT_EQ(io::exact_from_text(parse_number_text("6/-4", "x").text), Rational(-3) / Rational(2));
-  EXPECT_EQ(io::exact_from_text(parse_number_text("1e3", "x").text), Rational(1000));
-  EXPECT_EQ(io::exact_from_text(parse_number_text(".5", "x").text), Rational(1) / Rational(2));
+  EXPECT_EQ(io::exact_from_text(parse_number_text("6/-4", "x").text.str()),
+            Rational(-3) / Rational(2));
+  EXPECT_EQ(io::exact_from_text(parse_number_text("1e3", "x").text.str()), Rational(1000));
+  EXPECT_EQ(io::exact_from_text(parse_number_text(".5", "x").text.str()),
+            Rational(1) / Rational(2));
   EXPECT_EQ(io::exact_to_text(Rational(-3) / Rational(2)), "-3/2");
   // Leading zeros are decimal, never octal (regression: gmpxx reads "010" as 8).
   EXPECT_EQ(io::exact_from_text("010"), Rational(10));
