@@ -253,8 +253,11 @@ QSplineMotion qspline_motion(const json& doc, const std::string& source) {
 }
 
 AnyMotion load_any_motion(const std::string& path) {
-  const std::string text = read_text_file(path);
-  if (auto f = parse_motion_fast(text, path)) return to_motion(*f);
+  std::string text = read_text_file(path);
+  if (auto f = parse_motion_fast(text, path)) {
+    std::string().swap(text);  // read: its megabytes go before the motion is built
+    return to_motion(*f);
+  }
   json doc = parse_json(text, path, "method");  // one parse for either kind
   if (is_qspline_document(doc)) {
     QSplineMotion m = qspline_motion(doc, path);

@@ -20,8 +20,9 @@ Command add_info(CLI::App& app) {
                 "Compute the Plucker residual in exact rational arithmetic from the file's digits");
   return {
       sub, [o] {
-        const std::string text = io::read_text_file(o->first);
+        std::string text = io::read_text_file(o->first);
         if (auto f = io::parse_motion_fast(text, o->first)) {
+          std::string().swap(text);  // read: its megabytes go before the work
           std::cout << io::motion_info(*f, o->second).dump(2) << '\n';
           return 0;
         }
