@@ -1,4 +1,9 @@
 // io/json_number.cpp
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <atomic>
 #include <charconv>
 #include <cmath>
 #include <filesystem>
@@ -486,6 +491,162 @@ bool number(sj::value v, Number& out, bool lean) {
       return true;
     }
   }
+}
+
+namespace {
+
+bool json_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
+
+const char* skip_space(const char* p, const char* e) {
+  while (p < e && json_space(*p)) ++p;
+  return p;
+}
+
+bool digit(const char* p, const char* e) { return p < e && *p >= '0' && *p <= '9'; }
+
+/// The JSON number token at p into out, as number() reads it (integers keep their text,
+/// decimals too unless `lean` finds it the shortest round-trip text); p is left after it.
+bool scan_number(const char*& p, const char* e, Number& out, bool lean) {
+  const char* const s = p;
+  if (p < e && *p == '-') ++p;
+  if (p < e && *p == '0') {
+    ++p;
+  } else if (p < e && *p >= '1' && *p <= '9') {
+    while (digit(p, e)) ++p;
+  } else {
+    return false;
+  }
+  bool real = false;
+  if (p < e && *p == '.') {
+    if (!digit(++p, e)) return false;
+    while (digit(p, e)) ++p;
+    real = true;
+  }
+  if (p < e && (*p == 'e' || *p == 'E')) {
+    ++p;
+    if (p < e && (*p == '+' || *p == '-')) ++p;
+    if (!digit(p, e)) return false;
+    while (digit(p, e)) ++p;
+    real = true;
+  }
+  if (!real) {
+    if (p - s > 18) return false;  // 18 characters always fit int64; longer ones simdjson decides
+    std::int64_t i = 0;
+    std::from_chars(s, p, i);
+    out.text = std::to_string(i);
+    out.value = static_cast<double>(i);
+    return true;
+  }
+  double d = 0;
+  const auto r = std::from_chars(s, p, d);
+  if (r.ec != std::errc() || r.ptr != p || !std::isfinite(d)) return false;
+  const std::string_view raw(s, static_cast<std::size_t>(p - s));
+  out.value = d;
+  if (lean) {
+    char buf[32];
+    const auto t = std::to_chars(buf, buf + sizeof buf, d);
+    if (std::string_view(buf, static_cast<std::size_t>(t.ptr - buf)) == raw) {
+      out.text.clear();
+      return true;
+    }
+  }
+  out.text = raw;
+  return true;
+}
+
+/// `count` rows of `width` numbers, "[n, ...], [n, ...]", filling [p, e) exactly.
+bool scan_rows(const char* p, const char* e, std::size_t first, std::size_t count,
+               std::size_t width, const std::function<Number*(std::size_t)>& row, bool lean) {
+  for (std::size_t i = 0; i < count; ++i) {
+    p = skip_space(p, e);
+    if (i > 0) {
+      if (p == e || *p != ',') return false;
+      p = skip_space(p + 1, e);
+    }
+    if (p == e || *p != '[') return false;
+    Number* const out = row(first + i);
+    for (std::size_t k = 0; k < width; ++k) {
+      p = skip_space(p + 1, e);  // past '[' or ','
+      if (!scan_number(p, e, out[k], lean)) return false;
+      p = skip_space(p, e);
+      if (p == e || *p != (k + 1 < width ? ',' : ']')) return false;
+    }
+    ++p;
+  }
+  return skip_space(p, e) == e;
+}
+
+}  // namespace
+
+bool number_rows(std::string_view text, std::size_t width,
+                 const std::function<bool(std::size_t, std::size_t)>& rows,
+                 const std::function<Number*(std::size_t)>& row, bool lean) {
+  const char* b = skip_space(text.data(), text.data() + text.size());
+  const char* e = text.data() + text.size();
+  while (e > b && json_space(e[-1])) --e;
+  if (e - b < 2 || *b != '[' || e[-1] != ']') return false;
+  ++b;
+  --e;  // the rows, between the brackets
+  if (skip_space(b, e) == e) return rows(0, width);
+  if (width == 0) {  // the first row's: its commas and one
+    const char* const end = std::find(b, e, ']');
+    if (end == e) return false;
+    width = static_cast<std::size_t>(std::count(b, end, ',')) + 1;
+  }
+  // Parts of about equal length, each ending at a row's ']' and the next starting after the
+  // comma that follows it; rows are counted by their '['.
+  constexpr std::size_t kPartChars = std::size_t(1) << 16;
+  const auto length = static_cast<std::size_t>(e - b);
+  const std::size_t parts_wanted =
+      std::min<std::size_t>(4 * static_cast<std::size_t>(tbb::this_task_arena::max_concurrency()),
+                            1 + length / kPartChars);
+  struct Part {
+    const char* b;
+    const char* e;
+    std::size_t first = 0, count = 0;
+  };
+  std::vector<Part> parts;
+  const char* start = b;
+  for (std::size_t j = 1; j < parts_wanted && start < e; ++j) {
+    const char* cut = std::max(start, b + j * length / parts_wanted);
+    const char* close = std::find(cut, e, ']');
+    if (close == e) break;
+    const char* comma = skip_space(close + 1, e);
+    if (comma == e) break;  // the last row
+    if (*comma != ',') return false;
+    parts.push_back({start, close + 1});
+    start = comma + 1;
+  }
+  parts.push_back({start, e});
+  std::size_t total = 0;
+  for (auto& part : parts) {
+    part.first = total;
+    part.count = static_cast<std::size_t>(std::count(part.b, part.e, '['));
+    total += part.count;
+  }
+  if (!rows(total, width)) return false;
+  std::atomic<bool> ok{true};
+  const auto read = [&](std::size_t j) {
+    const Part& part = parts[j];
+    if (ok.load(std::memory_order_relaxed) &&
+        !scan_rows(part.b, part.e, part.first, part.count, width, row, lean))
+      ok = false;
+  };
+  if (parts.size() == 1) {
+    read(0);
+  } else {
+    tbb::parallel_for(std::size_t(0), parts.size(), read);
+  }
+  return ok;
+}
+
+bool read_value(std::string_view text, const std::function<bool(sj::value)>& read) {
+  const simdjson::padded_string copy(text);
+  sj::parser parser;
+  sj::document doc;
+  sj::value v;
+  if (parser.iterate(copy).get(doc) || doc.get_value().get(v)) return false;
+  return read(v);
 }
 
 bool numbers(sj::value v, std::vector<Number>& out, bool lean) {

@@ -3,6 +3,7 @@
 #pragma once
 #include <simdjson.h>
 
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <qmotion/io/json_number.hpp>
 #include <qmotion/io/poses.hpp>
@@ -44,6 +45,23 @@ bool number(sj::value v, Number& out, bool lean = false);
 /// Appends the numbers of the array at v to `out` (as number() reads each, `lean` too);
 /// false for anything else.
 bool numbers(sj::value v, std::vector<Number>& out, bool lean = false);
+
+/// Reads `text`, a JSON array of rows of numbers ("[[1, 2.5], [3, 4]]") with `width`
+/// numbers a row (0: as many as the first row has), each number as number(..., lean) reads
+/// it, by a strict scanner of its own that cuts a long text at row ends and reads the parts
+/// on every core. `rows(n, w)` is told the row count and width once, before any number, and
+/// returns false to refuse them; `row(i)` is where row i's w numbers go (called from several
+/// threads, each row once). False for anything the scanner does not take (a string, a
+/// nested array, an integer of 19 characters or more, a number out of double's range, rows
+/// of another width, bad syntax): the caller then reads the text with read_value.
+bool number_rows(std::string_view text, std::size_t width,
+                 const std::function<bool(std::size_t, std::size_t)>& rows,
+                 const std::function<Number*(std::size_t)>& row, bool lean);
+
+/// Reads `text`, one JSON value's text cut out of a document (sj::array::raw_json), with a
+/// parser of its own, and hands the value to `read`; false when it is not valid or `read`
+/// returns false.
+bool read_value(std::string_view text, const std::function<bool(sj::value)>& read);
 
 /// The pose document at v (parse_poses_fast's reader, for a pose document inside another
 /// file); std::nullopt as parse_poses_fast; throws the set's checks.

@@ -393,20 +393,73 @@ namespace {
 /// A method block's control points as rows of one width, lean (simd::number); false for
 /// anything else (no rows, an empty row, rows of different widths, not numbers): the tree
 /// reader then reads and words it.
+/// Rows of equal width read lean into out (the scanner on every core, or simdjson when
+/// the scanner declines); false for anything else.
 bool control_rows(simd::sj::value v, MotionFile::Rows& out) {
   simd::sj::array a;
-  if (v.get_array().get(a)) return false;
-  out.width = 0;
-  for (auto e : a) {
-    simd::sj::value row;
-    if (e.get(row)) return false;
-    const std::size_t before = out.values.size();
-    if (!simd::numbers(row, out.values, /*lean=*/true)) return false;
-    const std::size_t width = out.values.size() - before;
-    if (out.width == 0) out.width = width;
-    if (width == 0 || width != out.width) return false;
-  }
-  return out.width != 0;
+  std::string_view raw;
+  if (v.get_array().get(a) || a.raw_json().get(raw)) return false;
+  const bool scanned = simd::number_rows(
+      raw, 0,
+      [&](std::size_t n, std::size_t w) {
+        out.width = w;
+        out.values.assign(n * w, Number());
+        return true;
+      },
+      [&](std::size_t i) { return out.values.data() + i * out.width; }, /*lean=*/true);
+  if (scanned) return out.width != 0 && !out.values.empty();
+  return simd::read_value(raw, [&](simd::sj::value rv) {
+    simd::sj::array ra;
+    if (rv.get_array().get(ra)) return false;
+    out.width = 0;
+    out.values.clear();
+    for (auto e : ra) {
+      simd::sj::value row;
+      if (e.get(row)) return false;
+      const std::size_t before = out.values.size();
+      if (!simd::numbers(row, out.values, /*lean=*/true)) return false;
+      const std::size_t width = out.values.size() - before;
+      if (out.width == 0) out.width = width;
+      if (width == 0 || width != out.width) return false;
+    }
+    return out.width != 0;
+  });
+}
+
+/// The motion's control points, rows of 8 numbers read lean (the scanner on every core, or
+/// simdjson when the scanner declines); false for anything else, or more than
+/// kMaxMotionControlPoints.
+bool control_points(std::string_view raw, std::vector<std::array<Number, 8>>& ctrl) {
+  const bool scanned = simd::number_rows(
+      raw, 8,
+      [&](std::size_t n, std::size_t) {
+        if (n > kMaxMotionControlPoints) return false;
+        ctrl.assign(n, {});
+        return true;
+      },
+      [&](std::size_t i) { return ctrl[i].data(); }, /*lean=*/true);
+  if (scanned) return true;
+  return simd::read_value(raw, [&](simd::sj::value v) {
+    simd::sj::array rows;
+    std::size_t count = 0;
+    if (v.get_array().get(rows) || rows.count_elements().get(count) ||
+        count > kMaxMotionControlPoints)
+      return false;
+    ctrl.clear();
+    ctrl.reserve(count);  // no regrowth: the rows' numbers are moved, not copied twice
+    for (auto r : rows) {
+      simd::sj::array row;
+      if (r.get_array().get(row)) return false;
+      auto& c = ctrl.emplace_back();
+      std::size_t k = 0;
+      for (auto e : row) {
+        simd::sj::value ev;
+        if (k == 8 || e.get(ev) || !simd::number(ev, c[k++], /*lean=*/true)) return false;
+      }
+      if (k != 8) return false;
+    }
+    return true;
+  });
 }
 
 }  // namespace
@@ -461,23 +514,9 @@ std::optional<MotionFile> parse_motion_fast(const std::string& text, const std::
       f.units = std::string(u);
     } else if (key == "control_points") {
       sj::array rows;
-      std::size_t count = 0;
-      if (v.get_array().get(rows) || rows.count_elements().get(count) ||
-          count > kMaxMotionControlPoints)
-        return std::nullopt;
-      f.ctrl.clear();
-      f.ctrl.reserve(count);  // no regrowth: the rows' numbers are moved, not copied twice
-      for (auto r : rows) {
-        sj::array row;
-        if (r.get_array().get(row) || f.ctrl.size() >= kMaxMotionControlPoints) return std::nullopt;
-        auto& c = f.ctrl.emplace_back();
-        std::size_t k = 0;
-        for (auto e : row) {
-          sj::value ev;
-          if (k == 8 || e.get(ev) || !simd::number(ev, c[k++], /*lean=*/true)) return std::nullopt;
-        }
-        if (k != 8) return std::nullopt;
-      }
+      std::string_view raw;
+      if (v.get_array().get(rows) || rows.raw_json().get(raw)) return std::nullopt;
+      if (!control_points(raw, f.ctrl)) return std::nullopt;
       ctrl = true;
     } else if (key == "knots") {
       bool null = false;

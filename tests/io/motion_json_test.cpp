@@ -3,12 +3,14 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <qmotion/io/exact_number.hpp>
 #include <qmotion/io/interpolate.hpp>
 #include <qmotion/io/motion_json.hpp>
 #include <qmotion/io/poses.hpp>
+#include <random>
 #include <sstream>
 
 #include "io_test_util.hpp"
@@ -304,6 +306,126 @@ TEST(MotionJson, TheFastReaderReadsWhatTheDomReaderReads) {
     EXPECT_EQ(io::to_motion_double(*c).curve.ctrl(), io::to_motion_double(b).curve.ctrl()) << name;
   }
   EXPECT_GE(fast, 5);  // the fast reader did read the ordinary files
+}
+
+/// A cubic B-spline motion text of n control points whose numbers take the forms `form(i, k)`
+/// gives, rows separated by `sep`.
+template <typename Form>
+std::string spline_text(std::size_t n, const Form& form, const std::string& sep = ",\n  ") {
+  const std::string last = std::to_string(n - 3);
+  std::string t = R"({"type": "q-motion", "basis": "bspline", "degree": 3, "param_range": [0, )" +
+                  last + "],\n\"knots\": [0, 0, 0";
+  for (std::size_t i = 0; i <= n - 3; ++i) t += ", " + std::to_string(i);
+  t += ", " + last + ", " + last + ", " + last + "],\n\"control_points\": [";
+  for (std::size_t i = 0; i < n; ++i) {
+    t += (i ? sep : std::string()) + "[";
+    for (std::size_t k = 0; k < 8; ++k) t += (k ? ", " : "") + form(i, k);
+    t += "]";
+  }
+  return t + "]}";
+}
+
+void expect_same_control_points(const io::MotionFile& a, const io::MotionFile& b,
+                                const std::string& what) {
+  ASSERT_EQ(a.ctrl.size(), b.ctrl.size()) << what;
+  for (std::size_t i = 0; i < b.ctrl.size(); ++i)
+    for (std::size_t k = 0; k < 8; ++k) {
+      ASSERT_EQ(a.ctrl[i][k].source(), b.ctrl[i][k].source()) << what << " " << i << " " << k;
+      ASSERT_EQ(std::signbit(a.ctrl[i][k].value), std::signbit(b.ctrl[i][k].value)) << what;
+      ASSERT_EQ(a.ctrl[i][k].value, b.ctrl[i][k].value) << what << " " << i << " " << k;
+    }
+}
+
+TEST(MotionJson, TheRowScannerReadsEveryNumberFormAsTheDomReaderOnEveryCore) {
+  // The fast reader cuts long control point arrays at row ends and reads the parts on every
+  // core with a scanner of its own; whatever it reads must be what the DOM reader reads, and
+  // what it declines (a numeric string, a big integer) simdjson reads instead.
+  const std::vector<std::string> forms{"0",
+                                       "-0",
+                                       "1",
+                                       "-12",
+                                       "0.1",
+                                       "-0.0",
+                                       "1E+2",
+                                       "2.50e-3",
+                                       "0.10000000000000001",
+                                       "123456789012345678",
+                                       "-98765432109876543",
+                                       "3.141592653589793",
+                                       "1e-300",
+                                       "7.0",
+                                       "0.30000000000000004",
+                                       "-1.5E-7",
+                                       "2.2250738585072014e-308",
+                                       "1.7976931348623157e308"};
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1e3, 1e3);
+  std::vector<std::string> shortest;
+  for (int i = 0; i < 997; ++i) {
+    char b[32];
+    shortest.emplace_back(b, std::to_chars(b, b + 32, u(rng)).ptr);
+  }
+  const auto mixed = [&](std::size_t i, std::size_t k) {
+    const std::size_t j = i * 8 + k;
+    return j % 3 == 0 ? forms[j % forms.size()] : shortest[j % shortest.size()];
+  };
+  struct Case {
+    std::string name, text;
+  };
+  const std::size_t n = 6000;  // about 0.8 MB of rows: a dozen parts
+  const std::vector<Case> cases{
+      {"mixed", spline_text(n, mixed)},
+      {"one line", spline_text(n, mixed, ",")},
+      {"spaced", spline_text(n, mixed, " \t,\r\n\n ")},
+      {"a numeric string", spline_text(n,
+                                       [&](std::size_t i, std::size_t k) {
+                                         return i == n / 2 && k == 3 ? std::string("\"0.25\"")
+                                                                     : mixed(i, k);
+                                       })},
+      {"a 19-digit integer", spline_text(n,
+                                         [&](std::size_t i, std::size_t k) {
+                                           return i == n - 1 && k == 0
+                                                      ? std::string("1234567890123456789")
+                                                      : mixed(i, k);
+                                         })},
+      {"short", spline_text(5, mixed)}};
+  for (const auto& c : cases) {
+    const io::MotionFile dom = io::parse_motion(io::parse_json(c.text, c.name, "method"), c.name);
+    const auto fast = io::parse_motion_fast(c.text, c.name);
+    ASSERT_TRUE(fast.has_value()) << c.name;
+    expect_same_control_points(*fast, dom, c.name);
+    tbb::task_arena one(1);
+    one.execute([&] {
+      const auto single = io::parse_motion_fast(c.text, c.name);
+      ASSERT_TRUE(single.has_value()) << c.name;
+      expect_same_control_points(*single, dom, c.name + " on one core");
+    });
+  }
+  // Bad rows are refused (by the DOM reader's words) wherever the scanner meets them.
+  const auto bad = [&](std::size_t row, const std::string& number) {
+    return spline_text(
+        n, [&](std::size_t i, std::size_t k) { return i == row && k == 4 ? number : mixed(i, k); });
+  };
+  for (const auto& [what, text] : std::vector<std::pair<std::string, std::string>>{
+           {"leading zero", bad(n / 3, "01")},
+           {"bare point", bad(2, "1.")},
+           {"plus sign", bad(n - 2, "+1")},
+           {"missing number", bad(n / 2, "")},
+           {"nested array", bad(n / 4, "[1]")},
+           {"infinite", bad(7, "1e400")},
+           {"seven numbers", spline_text(n, [&](std::size_t i, std::size_t k) {
+              return i == n / 5 && k == 7 ? std::string("1], [2") : mixed(i, k);
+            })}}) {
+    bool refused = false;
+    try {
+      (void)io::parse_motion_text(text, what);
+    } catch (const Error& e) {
+      refused = true;
+      EXPECT_EQ(e.code(), Errc::invalid_input) << what;
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+    EXPECT_TRUE(refused) << what;
+  }
 }
 
 TEST(MotionJson, BadMotionsGetTheDomReadersMessageThroughTheFastReader) {
