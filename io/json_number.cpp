@@ -349,7 +349,9 @@ Number read_number(const json& j, const std::string& where) {
 namespace simd {
 
 Document::Document(const std::string& text) {
-  thread_local sj::parser parser;
+  thread_local sj::parser shared;
+  if (text.size() > kOwnParserChars) own = std::make_unique<sj::parser>();
+  sj::parser& parser = own ? *own : shared;
   // read_text_file leaves the padding simdjson reads past the end; other text is copied.
   if (text.capacity() - text.size() >= simdjson::SIMDJSON_PADDING) {
     ok = !parser.iterate(text).get(doc);

@@ -4,6 +4,7 @@
 #include <simdjson.h>
 
 #include <functional>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <qmotion/io/json_number.hpp>
 #include <qmotion/io/poses.hpp>
@@ -15,12 +16,19 @@ namespace qmotion::io::simd {
 
 namespace sj = simdjson::ondemand;
 
-/// A document being read with this thread's parser: the text in place when it has
-/// simdjson's padding as spare capacity (read_text_file leaves it), else a padded copy. `ok` is
-/// false when simdjson refused the text outright.
+/// Texts longer than this are read with a parser of their own (Document::own).
+inline constexpr std::size_t kOwnParserChars = std::size_t(1) << 20;
+
+/// A document being read with this thread's parser (a long text: with its own): the text in place
+/// when it has simdjson's padding as spare capacity (read_text_file leaves it), else a padded copy.
+/// `ok` is false when simdjson refused the text outright.
 struct Document {
   explicit Document(const std::string& text);  ///< text must outlive the Document
   simdjson::padded_string padded;
+  /// A parser of its own for a text above kOwnParserChars, freed with the document: the
+  /// thread's parser would keep an index the size of the longest text it ever read (4 bytes
+  /// a character reserved, about 5 MB touched for a 10^4-pose motion).
+  std::unique_ptr<sj::parser> own;
   sj::document doc;
   bool ok = false;
   /// True when nothing but white space follows the root value (the on-demand parser
