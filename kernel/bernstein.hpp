@@ -72,17 +72,26 @@ Coef evaluate(const Bernstein<Coef>& p, const coef_scalar_t<Coef>& t) {
   return c[0];
 }
 
+/// Blossom (polar form) of p at the degree parameters u[0], u[1], ... (global parameters, any
+/// iterator), with `work` as scratch space: its capacity is reused from call to call.
+template <typename Coef, typename It>
+Coef blossom(const Bernstein<Coef>& p, It u, std::vector<Coef>& work) {
+  work.assign(p.coeffs().begin(), p.coeffs().end());
+  for (std::size_t r = 1; r < work.size(); ++r, ++u) {
+    const auto s = p.local(*u);
+    for (std::size_t i = 0; i + r < work.size(); ++i)
+      work[i] = detail::lerp(work[i], work[i + 1], s);
+  }
+  return work[0];
+}
+
 /// Blossom (polar form) of p at the n parameters u (global parameters).
 /// @pre u.size() == p.degree()
 template <typename Coef>
 Coef blossom(const Bernstein<Coef>& p, const std::vector<coef_scalar_t<Coef>>& u) {
   QMOTION_EXPECTS(static_cast<int>(u.size()) == p.degree(), "blossom needs degree arguments");
-  std::vector<Coef> c = p.coeffs();
-  for (std::size_t r = 1; r < c.size(); ++r) {
-    const auto s = p.local(u[r - 1]);
-    for (std::size_t i = 0; i + r < c.size(); ++i) c[i] = detail::lerp(c[i], c[i + 1], s);
-  }
-  return c[0];
+  std::vector<Coef> c;
+  return blossom(p, u.begin(), c);
 }
 
 /// The same polynomial in Bernstein form over [s, e] (any s < e; extrapolates outside [a, b]).

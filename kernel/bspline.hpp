@@ -286,7 +286,7 @@ BSpline<Coef> from_bezier_pieces(const std::vector<Bernstein<Coef>>& pieces, int
     if (x.empty() || x.back() != v) x.push_back(v);
   if (x.size() != pieces.size() + 1)
     throw Error(Errc::internal, "Bezier pieces do not match the knot vector");
-  std::vector<Coef> ctrl;
+  std::vector<Coef> ctrl, work;
   ctrl.reserve(n);
   for (std::size_t i = 0; i < n; ++i) {
     // The widest non-empty span within the pole's support [T_i, T_{i+d+1}]: every such
@@ -315,7 +315,7 @@ BSpline<Coef> from_bezier_pieces(const std::vector<Bernstein<Coef>>& pieces, int
       ctrl.push_back(pieces[k][static_cast<int>(m)]);
       continue;
     }
-    ctrl.push_back(blossom(pieces[k], std::vector<S>(first, last)));
+    ctrl.push_back(blossom(pieces[k], first, work));
   }
   return BSpline<Coef>::make(degree, std::move(knots), std::move(ctrl));
 }
