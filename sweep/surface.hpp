@@ -25,13 +25,9 @@ struct HomogeneousSurface {
 template <typename Scalar>
 std::vector<kernel::BSpline<Vec4<Scalar>>> trajectories(const Motion<Scalar>& motion,
                                                         const std::vector<Vec4<Scalar>>& X) {
-  std::vector<kernel::BSpline<Vec4<Scalar>>> cols;
-  if (motion.factors) {  // one matrix spline, then a linear map per point
-    const auto M = matrix_from_factors(*motion.factors);
-    for (const auto& x : X) cols.push_back(apply(M, x));
-    return cols;
-  }
+  if (motion.factors) return trajectories_from_factors(*motion.factors, X);
   const kernel::QMotion<Scalar>& m = motion.curve;
+  std::vector<kernel::BSpline<Vec4<Scalar>>> cols;
   for (const auto& x : X) cols.push_back(kernel::homogeneous_trajectory(m, x));
   if (m.segments() == 1) {
     int d = 0;

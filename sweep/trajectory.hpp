@@ -5,6 +5,7 @@
 #include <optional>
 #include <qmotion/kernel/motion.hpp>
 #include <qmotion/sweep/factors.hpp>
+#include <utility>
 #include <vector>
 
 namespace qmotion::sweep {
@@ -71,14 +72,13 @@ kernel::BSpline<Eigen::Matrix<Scalar, 3, 1>> add(
 
 }  // namespace detail
 
-/// The motion's matrix spline at the minimal degree its factors allow (the form (35) of
-/// Theorem 6): y(t) = M(t) X for every homogeneous point X = (x0, x), with
-///   M = [[|Q_rot|^2, 0], [a(t), U(t)]],  U v = Vec(Q_rot v Q_rot~),
-/// a = |Q_rot|^2 p (TR), |Q_rot|^2 p1 + U p2 (TRT), w (minimal order). Degree 2k + l (TR),
-/// 2k + max(l1, l2) (TRT), max(2k, l) (minimal). Built once; every trajectory and every
-/// column of a kinematic surface is then a linear map of its poles. Exact for exact Scalar.
-template <typename Scalar>
-kernel::BSpline<Eigen::Matrix<Scalar, 4, 4>> matrix_from_factors(const MotionFactors<Scalar>& f) {
+namespace detail {
+
+/// The Bezier pieces of matrix_from_factors' spline, span by span on the factors' common
+/// breakpoints, each handed to visit(piece) as it is made and not kept; returns the spline's
+/// degree and knot vector (from_bezier_pieces assembles it from them).
+template <typename Scalar, typename Visit>
+std::pair<int, std::vector<Scalar>> matrix_pieces(const MotionFactors<Scalar>& f, Visit&& visit) {
   using V3 = Eigen::Matrix<Scalar, 3, 1>;
   using M3 = Eigen::Matrix<Scalar, 3, 3>;
   using M4 = Eigen::Matrix<Scalar, 4, 4>;
@@ -112,8 +112,6 @@ kernel::BSpline<Eigen::Matrix<Scalar, 4, 4>> matrix_from_factors(const MotionFac
     return m;
   };
   const auto times = [](const M3& u, const V3& v) { return V3(u * v); };
-  std::vector<Bernstein<M4>> pieces;
-  pieces.reserve(rot.size());
   // Degree: 2k for |Q_rot|^2 and U; the translation column 2k + l (TR), 2k + max(l1, l2)
   // (TRT), l (minimal order).
   const int k2 = 2 * f.rotation.degree();
@@ -142,7 +140,7 @@ kernel::BSpline<Eigen::Matrix<Scalar, 4, 4>> matrix_from_factors(const MotionFac
     const auto m = kernel::elevate(nu, d - nu.degree());
     std::vector<M4> c = m.coeffs();
     for (int i = 0; i <= d; ++i) c[static_cast<std::size_t>(i)].template block<3, 1>(1, 0) = a[i];
-    pieces.emplace_back(std::move(c), m.a(), m.b());
+    visit(Bernstein<M4>(std::move(c), m.a(), m.b()));
   }
   // At a breakpoint the matrix is as smooth as the least smooth factor there.
   std::vector<Scalar> knots(static_cast<std::size_t>(d + 1), x.front());
@@ -154,7 +152,47 @@ kernel::BSpline<Eigen::Matrix<Scalar, 4, 4>> matrix_from_factors(const MotionFac
     knots.insert(knots.end(), static_cast<std::size_t>(std::clamp(d - cont, 0, d + 1)), x[k]);
   }
   knots.insert(knots.end(), static_cast<std::size_t>(d + 1), x.back());
+  return {d, std::move(knots)};
+}
+
+}  // namespace detail
+
+/// The motion's matrix spline at the minimal degree its factors allow (the form (35) of
+/// Theorem 6): y(t) = M(t) X for every homogeneous point X = (x0, x), with
+///   M = [[|Q_rot|^2, 0], [a(t), U(t)]],  U v = Vec(Q_rot v Q_rot~),
+/// a = |Q_rot|^2 p (TR), |Q_rot|^2 p1 + U p2 (TRT), w (minimal order). Degree 2k + l (TR),
+/// 2k + max(l1, l2) (TRT), max(2k, l) (minimal). Every trajectory and every column of a
+/// kinematic surface is a linear map of its poles (trajectories_from_factors makes them
+/// without it). Exact for exact Scalar.
+template <typename Scalar>
+kernel::BSpline<Eigen::Matrix<Scalar, 4, 4>> matrix_from_factors(const MotionFactors<Scalar>& f) {
+  std::vector<kernel::Bernstein<Eigen::Matrix<Scalar, 4, 4>>> pieces;
+  auto [d, knots] =
+      detail::matrix_pieces(f, [&](auto&& piece) { pieces.push_back(std::move(piece)); });
   return kernel::from_bezier_pieces(pieces, d, std::move(knots));
+}
+
+/// The homogeneous trajectories y_j = M X_j of the points X_j (matrix_from_factors' M), all
+/// with M's degree and knots: each span's matrix piece is applied to every X_j as it is made,
+/// so neither M nor its pieces are held (a 4 x 4 piece is four times a trajectory's).
+/// Exact for exact Scalar.
+template <typename Scalar>
+std::vector<kernel::BSpline<Vec4<Scalar>>> trajectories_from_factors(
+    const MotionFactors<Scalar>& f, const std::vector<Vec4<Scalar>>& X) {
+  using M4 = Eigen::Matrix<Scalar, 4, 4>;
+  std::vector<std::vector<kernel::Bernstein<Vec4<Scalar>>>> pieces(X.size());
+  auto [d, knots] = detail::matrix_pieces(f, [&](const kernel::Bernstein<M4>& m) {
+    for (std::size_t j = 0; j < X.size(); ++j) {
+      std::vector<Vec4<Scalar>> c;
+      c.reserve(m.coeffs().size());
+      for (const M4& a : m.coeffs()) c.push_back(a * X[j]);
+      pieces[j].emplace_back(std::move(c), m.a(), m.b());
+    }
+  });
+  std::vector<kernel::BSpline<Vec4<Scalar>>> out;
+  out.reserve(X.size());
+  for (const auto& p : pieces) out.push_back(kernel::from_bezier_pieces(p, d, knots));
+  return out;
 }
 
 /// y = M X for a matrix spline M.
@@ -181,7 +219,7 @@ kernel::BSpline<Vec4<Scalar>> trajectory_from_factors(const MotionFactors<Scalar
     return detail::homogeneous(
         one, kernel::map_coeffs(f.translation, [&](const V3& v) { return V3(v * x0); }));
   }
-  return apply(matrix_from_factors(f), X);
+  return trajectories_from_factors(f, std::vector<Vec4<Scalar>>{X}).front();
 }
 
 /// Homogeneous trajectory of X from the motion alone (y = M(t) X, degree 2n), with the

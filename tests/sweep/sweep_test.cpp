@@ -176,6 +176,46 @@ TEST(Trajectory, SplineMatrixIsTheMotionWithTheFactorsContinuity) {
     }
 }
 
+TEST(Trajectory, PointsMappedSpanBySpanAreTheMatrixSplinesImages) {
+  // trajectories_from_factors applies each span's matrix piece to the points as it is made,
+  // without the matrix spline: in rational arithmetic its poles and knots are M X's exactly.
+  const auto P = io::to_poses_exact(io::read_poses(test_data("poses/rational_exact.json")));
+  std::vector<Rational> t;
+  for (const auto& p : P) t.push_back(*p.t);
+  const std::vector<sweep::Vec4<Rational>> X{
+      {Rational(1), Rational(0), Rational(0), Rational(0)},
+      {Rational(3), Rational(1), Rational(-2), Rational(5) / Rational(7)},
+      {Rational(1, 2), Rational(4), Rational(0), Rational(-1)}};
+  const auto expect_images = [&](const kernel::MotionFactors<Rational>& f,
+                                 const std::string& what) {
+    const auto M = sweep::matrix_from_factors(f);
+    const auto y = sweep::trajectories_from_factors(f, X);
+    ASSERT_EQ(y.size(), X.size());
+    for (std::size_t j = 0; j < X.size(); ++j) {
+      const auto e = sweep::apply(M, X[j]);
+      EXPECT_EQ(y[j].degree(), e.degree()) << what;
+      EXPECT_EQ(y[j].knots(), e.knots()) << what;
+      EXPECT_TRUE(y[j].ctrl() == e.ctrl()) << what << " point " << j;
+    }
+  };
+  for (auto tr : {TranslationMethod::tr, TranslationMethod::minimal})
+    for (int k = 1; k <= 2; ++k) {
+      kernel::SplineOptions o;
+      o.translation = tr;
+      o.k = k;
+      o.l = 2;
+      expect_images(*kernel::interpolate_bspline(P, t, o).factors,
+                    std::string("B-spline ") + kernel::to_string(tr) + " k = " + std::to_string(k));
+    }
+  for (auto tr : kTr) {
+    kernel::InterpolationOptions o;
+    o.translation = tr;
+    o.rotation = RotationMethod::affine;
+    expect_images(*kernel::interpolate_bezier(P, t, o).factors,
+                  std::string("Bezier ") + kernel::to_string(tr));
+  }
+}
+
 std::vector<std::pair<std::string, sweep::NurbsCurve<double>>> profiles() {
   return {
       {"parabola.json",
