@@ -479,9 +479,9 @@ std::optional<MotionFile> parse_motion_fast(const std::string& text, const std::
   f.source = source;
   bool type = false, basis = false, degree = false, range = false, ctrl = false,
        knots_given = false;
-  const auto numbers = [](sj::value v, std::vector<Number>& out) {
+  const auto numbers = [](sj::value v, std::vector<Number>& out, bool lean = false) {
     out.clear();
-    return simd::numbers(v, out);
+    return simd::numbers(v, out, lean);
   };
   for (auto field : root) {
     std::string_view key;
@@ -522,7 +522,7 @@ std::optional<MotionFile> parse_motion_fast(const std::string& text, const std::
       bool null = false;
       if (v.is_null().get(null)) return std::nullopt;
       knots_given = !null;
-      if (!null && !numbers(v, f.knots)) return std::nullopt;
+      if (!null && !numbers(v, f.knots, /*lean=*/true)) return std::nullopt;
     } else if (key == "method") {
       sj::json_type t;
       if (v.type().get(t) || (t != sj::json_type::object && t != sj::json_type::null))
