@@ -369,6 +369,14 @@ bool Document::at_end() {
 
 namespace {
 
+/// Whether raw is the shortest round-trip text of d (the number then keeps no text: the value
+/// gives it back).
+bool is_shortest_text(double d, std::string_view raw) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, d);
+  return std::string_view(buf, static_cast<std::size_t>(r.ptr - buf)) == raw;
+}
+
 /// The trailing white space the raw token of a number carries.
 std::string_view trimmed(std::string_view raw) {
   while (!raw.empty() &&
@@ -480,14 +488,10 @@ bool number(sj::value v, Number& out, bool lean) {
     default: {
       const std::string_view raw = trimmed(v.raw_json_token());
       const double d = n.get_double();
-      if (lean) {
-        char buf[32];
-        const auto r = std::to_chars(buf, buf + sizeof buf, d);
-        if (std::string_view(buf, static_cast<std::size_t>(r.ptr - buf)) == raw) {
-          out.text.clear();
-          out.value = d;
-          return true;
-        }
+      if (lean && is_shortest_text(d, raw)) {
+        out.text.clear();
+        out.value = d;
+        return true;
       }
       out = Number{std::string(raw), d};
       return true;
@@ -544,15 +548,7 @@ bool scan_number(const char*& p, const char* e, Number& out, bool lean) {
   if (r.ec != std::errc() || r.ptr != p || !std::isfinite(d)) return false;
   const std::string_view raw(s, static_cast<std::size_t>(p - s));
   out.value = d;
-  if (lean) {
-    char buf[32];
-    const auto t = std::to_chars(buf, buf + sizeof buf, d);
-    if (std::string_view(buf, static_cast<std::size_t>(t.ptr - buf)) == raw) {
-      out.text.clear();
-      return true;
-    }
-  }
-  out.text = raw;
+  out.text = lean && is_shortest_text(d, raw) ? NumberText() : NumberText(raw);
   return true;
 }
 

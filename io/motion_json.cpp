@@ -390,11 +390,9 @@ void finish_motion(MotionFile& f, bool knots_given) {
 
 namespace {
 
-/// A method block's control points as rows of one width, lean (simd::number); false for
-/// anything else (no rows, an empty row, rows of different widths, not numbers): the tree
-/// reader then reads and words it.
-/// Rows of equal width read lean into out (the scanner on every core, or simdjson when
-/// the scanner declines); false for anything else.
+/// A method block's control points as rows of one width, read lean (the scanner on every
+/// core, or simdjson when the scanner declines); false for anything else (no rows, an empty
+/// row, rows of different widths, not numbers): the tree reader then reads and words it.
 bool control_rows(simd::sj::value v, MotionFile::Rows& out) {
   simd::sj::array a;
   std::string_view raw;

@@ -141,6 +141,17 @@ TEST(Trajectory, ExactlyOnTheMotionInRationalArithmetic) {
   }
 }
 
+/// The B-spline motion through the exact poses P at t, rotation factor of degree k,
+/// translation factor of degree 2.
+auto exact_spline(const std::vector<kernel::Pose<Rational>>& P, const std::vector<Rational>& t,
+                  TranslationMethod tr, int k) {
+  kernel::SplineOptions o;
+  o.translation = tr;
+  o.k = k;
+  o.l = 2;
+  return kernel::interpolate_bspline(P, t, o);
+}
+
 TEST(Trajectory, SplineMatrixIsTheMotionWithTheFactorsContinuity) {
   // The matrix spline of a B-spline motion's factors (built span by span, assembled once) is
   // the motion's matrix at every parameter, exactly, and at each interior breakpoint exactly
@@ -150,11 +161,7 @@ TEST(Trajectory, SplineMatrixIsTheMotionWithTheFactorsContinuity) {
   for (const auto& p : P) t.push_back(*p.t);
   for (auto tr : {TranslationMethod::tr, TranslationMethod::minimal})
     for (int k = 1; k <= 2; ++k) {
-      kernel::SplineOptions o;
-      o.translation = tr;
-      o.k = k;
-      o.l = 2;
-      const auto r = kernel::interpolate_bspline(P, t, o);
+      const auto r = exact_spline(P, t, tr, k);
       const auto& f = *r.factors;
       const auto M = sweep::matrix_from_factors(f);
       ASSERT_GT(M.breakpoints().size(), 2u);
@@ -200,11 +207,7 @@ TEST(Trajectory, PointsMappedSpanBySpanAreTheMatrixSplinesImages) {
   };
   for (auto tr : {TranslationMethod::tr, TranslationMethod::minimal})
     for (int k = 1; k <= 2; ++k) {
-      kernel::SplineOptions o;
-      o.translation = tr;
-      o.k = k;
-      o.l = 2;
-      expect_images(*kernel::interpolate_bspline(P, t, o).factors,
+      expect_images(*exact_spline(P, t, tr, k).factors,
                     std::string("B-spline ") + kernel::to_string(tr) + " k = " + std::to_string(k));
     }
   for (auto tr : kTr) {
