@@ -28,6 +28,31 @@ TEST(JsonNumber, FloatLiteralsKeepTheirSourceText) {
   EXPECT_DOUBLE_EQ(io::read_number(j["c"], "c").value, 0.75);
 }
 
+TEST(JsonNumber, AKeptTextOfAnyLengthReadsBackWhole) {
+  // The length takes one byte below 255 and nine from there: both sides of the switch,
+  // the longest text a number may have, copies and moves.
+  for (const std::size_t n : {std::size_t(1), std::size_t(19), std::size_t(254), std::size_t(255),
+                              std::size_t(256), std::size_t(300), io::kMaxNumberChars}) {
+    std::string s;
+    for (std::size_t i = 0; i < n; ++i) s.push_back(static_cast<char>('0' + (i * 7 + n) % 10));
+    const io::NumberText t(s);
+    ASSERT_FALSE(t.empty());
+    EXPECT_EQ(t.size(), n);
+    EXPECT_EQ(t.view(), s);
+    EXPECT_EQ(t.str(), s);
+    const io::NumberText copy = t;
+    EXPECT_EQ(copy, t);
+    EXPECT_NE(copy.begin(), t.begin());
+    io::NumberText moved = io::NumberText(s.substr(0, n - 1));
+    EXPECT_EQ(moved.size(), n - 1);
+    moved = copy;
+    EXPECT_EQ(moved.view(), s);
+  }
+  const io::NumberText none("");
+  EXPECT_TRUE(none.empty());
+  EXPECT_EQ(none.size(), 0U);
+}
+
 TEST(JsonNumber, RationalTextIsExactAndCanonical) {
   EXPECT_EQ(io::exact_from_text(parse_number_text("6/-4", "x").text.str()),
             Rational(-3) / Rational(2));
