@@ -73,16 +73,27 @@ Coef evaluate(const Bernstein<Coef>& p, const coef_scalar_t<Coef>& t) {
 }
 
 /// Blossom (polar form) of p at the degree parameters u[0], u[1], ... (global parameters, any
-/// iterator), with `work` as scratch space: its capacity is reused from call to call.
+/// iterator), with `work` as scratch space: its capacity is reused from call to call. An
+/// argument at an end of [a, b] costs nothing: the step would take every coefficient's
+/// right (at b) or left (at a) neighbour whole, so the live coefficients' window moves
+/// instead (same value: lerp at 1 or 0 is exact). A B-spline pole's knot window mostly
+/// holds span ends (from_bezier_pieces).
 template <typename Coef, typename It>
 Coef blossom(const Bernstein<Coef>& p, It u, std::vector<Coef>& work) {
   work.assign(p.coeffs().begin(), p.coeffs().end());
+  std::size_t lo = 0, hi = work.size();  // the live coefficients: work[lo, hi)
   for (std::size_t r = 1; r < work.size(); ++r, ++u) {
-    const auto s = p.local(*u);
-    for (std::size_t i = 0; i + r < work.size(); ++i)
-      work[i] = detail::lerp(work[i], work[i + 1], s);
+    if (*u == p.b()) {  // work[i] <- work[i + 1]
+      ++lo;
+      continue;
+    }
+    if (*u != p.a()) {  // at a: work[i] <- work[i]
+      const auto s = p.local(*u);
+      for (std::size_t i = lo; i + 1 < hi; ++i) work[i] = detail::lerp(work[i], work[i + 1], s);
+    }
+    --hi;
   }
-  return work[0];
+  return work[lo];
 }
 
 /// Blossom (polar form) of p at the n parameters u (global parameters).

@@ -278,44 +278,43 @@ std::vector<Bernstein<Coef>> bezier_pieces(const BSpline<Coef>& s,
 template <typename Coef>
 BSpline<Coef> from_bezier_pieces(const std::vector<Bernstein<Coef>>& pieces, int degree,
                                  std::vector<coef_scalar_t<Coef>> knots) {
-  using S = coef_scalar_t<Coef>;
   const std::size_t d = static_cast<std::size_t>(degree);
   const std::size_t n = knots.size() - d - 1;
-  std::vector<S> x;
-  for (const auto& v : knots)
-    if (x.empty() || x.back() != v) x.push_back(v);
-  if (x.size() != pieces.size() + 1)
+  // The non-empty knot spans j (T_j < T_(j+1)) in order: pieces[k] is on span[k].
+  std::vector<std::size_t> span;
+  for (std::size_t j = 0; j + 1 < knots.size(); ++j)
+    if (knots[j] < knots[j + 1]) span.push_back(j);
+  if (span.size() != pieces.size())
     throw Error(Errc::internal, "Bezier pieces do not match the knot vector");
   std::vector<Coef> ctrl, work;
   ctrl.reserve(n);
+  std::size_t first = 0;  // the first non-empty span not before the pole's window
   for (std::size_t i = 0; i < n; ++i) {
     // The widest non-empty span within the pole's support [T_i, T_{i+d+1}]: every such
     // span's piece has the same blossom there (the continuity the knots state), and the
     // widest evaluates it best (a piece on a tiny span extrapolates badly).
-    std::size_t best = d;
-    bool found = false;
-    for (std::size_t j = std::max(i, d); j <= std::min(i + d, n - 1); ++j)
-      if (knots[j] < knots[j + 1]) {
-        if (!found || knots[best + 1] - knots[best] < knots[j + 1] - knots[j]) best = j;
-        found = true;
-      }
-    if (!found) throw Error(Errc::internal, "pole without a non-empty span");
-    const std::size_t k =
-        static_cast<std::size_t>(std::lower_bound(x.begin(), x.end(), knots[best]) - x.begin());
+    const std::size_t lo = std::max(i, d), hi = std::min(i + d, n - 1);
+    while (first < span.size() && span[first] < lo) ++first;
+    std::size_t k = first;
+    if (k == span.size() || span[k] > hi)
+      throw Error(Errc::internal, "pole without a non-empty span");
+    for (std::size_t c = k + 1; c < span.size() && span[c] <= hi; ++c)
+      if (knots[span[k] + 1] - knots[span[k]] < knots[span[c] + 1] - knots[span[c]]) k = c;
+    const std::size_t best = span[k];
     if (d == 0) {
       ctrl.push_back(pieces[k][0]);
       continue;
     }
     // A window made of the piece's own end points only, (x_k^(d-m), x_(k+1)^m), blossoms to
     // its Bernstein coefficient m: no evaluation (every pole of a Bezier-like knot vector).
-    const auto first = knots.begin() + static_cast<std::ptrdiff_t>(i + 1);
-    const auto last = first + static_cast<std::ptrdiff_t>(d);
-    const auto ends = std::count(first, last, x[k]), m = std::count(first, last, x[k + 1]);
-    if (ends + m == static_cast<std::ptrdiff_t>(d)) {
-      ctrl.push_back(pieces[k][static_cast<int>(m)]);
+    // The window T_(i+1..i+d) is sorted and no knot lies between x_k = T_best and
+    // x_(k+1) = T_(best+1), so it is made of them when it lies in [x_k, x_(k+1)]; its
+    // x_(k+1) are those from T_(best+1) on.
+    if (!(knots[i + 1] < knots[best]) && !(knots[best + 1] < knots[i + d])) {
+      ctrl.push_back(pieces[k][static_cast<int>(i + d - best)]);
       continue;
     }
-    ctrl.push_back(blossom(pieces[k], first, work));
+    ctrl.push_back(blossom(pieces[k], knots.begin() + static_cast<std::ptrdiff_t>(i + 1), work));
   }
   return BSpline<Coef>::make(degree, std::move(knots), std::move(ctrl));
 }

@@ -117,6 +117,58 @@ TYPED_TEST(BernsteinTest, ElevationSubdivisionAndDerivativeKeepTheFunction) {
   check_elevation_subdivision<kernel::DualQuaternion<S>>(g);
 }
 
+/// De Casteljau's blossom with every step taken (no shortcut at the interval's ends).
+template <typename C>
+C reference_blossom(const Bernstein<C>& p, const std::vector<kernel::coef_scalar_t<C>>& u) {
+  using S = kernel::coef_scalar_t<C>;
+  std::vector<C> c = p.coeffs();
+  for (std::size_t r = 1; r < c.size(); ++r) {
+    const S s = p.local(u[r - 1]);
+    for (std::size_t i = 0; i + r < c.size(); ++i)
+      c[i] = kernel::scale(S(S(1) - s), c[i]) + kernel::scale(s, c[i + 1]);
+  }
+  return c[0];
+}
+
+template <typename C>
+void check_blossom_at_ends(std::mt19937& g) {
+  using S = kernel::coef_scalar_t<C>;
+  const S a = S(-1) / S(2), b = S(3), inside = S(5) / S(4), outside = S(7);
+  for (int n = 1; n <= 9; ++n) {
+    const auto p = rand_poly<C>(g, n, a, b);
+    std::vector<C> work;
+    // Every argument list of a, b, an inner and an outer parameter, in every order the
+    // generator gives: the same as every step taken, and a^(n-m) b^m is coefficient m.
+    for (int trial = 0; trial < 40; ++trial) {
+      std::vector<S> u;
+      int at_b = 0, others = 0;
+      for (int i = 0; i < n; ++i) {
+        const int pick = static_cast<int>(g() % 4);
+        u.push_back(pick == 0 ? a : pick == 1 ? b : pick == 2 ? inside : outside);
+        at_b += pick == 1;
+        others += pick >= 2;
+      }
+      const C got = kernel::blossom(p, u.begin(), work);
+      ASSERT_TRUE(coef_near(got, reference_blossom(p, u), 1e-11)) << "degree " << n;
+      if (others == 0) {
+        ASSERT_TRUE(coef_near(got, p[at_b], 0.0)) << "degree " << n;
+      }
+      std::sort(u.begin(), u.end());
+      ASSERT_TRUE(coef_near(kernel::blossom(p, u.begin(), work), got, 1e-11));  // symmetric
+    }
+    ASSERT_TRUE(coef_near(kernel::blossom(p, std::vector<S>(static_cast<std::size_t>(n), inside)),
+                          direct_eval(p, inside), 1e-11));  // the diagonal is p
+  }
+}
+
+TYPED_TEST(BernsteinTest, BlossomArgumentsAtTheEndsAreStepsSavedNotChanges) {
+  using S = TypeParam;
+  std::mt19937 g(21);
+  check_blossom_at_ends<S>(g);
+  check_blossom_at_ends<Eigen::Matrix<S, 4, 1>>(g);
+  check_blossom_at_ends<Eigen::Matrix<S, 4, 4>>(g);
+}
+
 TYPED_TEST(BernsteinTest, DegreeReductionDetectsElevation) {
   using S = TypeParam;
   using Q = kernel::Quaternion<S>;
