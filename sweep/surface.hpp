@@ -57,7 +57,7 @@ HomogeneousSurface<Scalar> kinematic_surface(const Motion<Scalar>& m,
   // Every column's weight function is w_j times the motion's: one refinement serves all.
   const auto extra = knots_for_positive_weights(cols.front());
   HomogeneousSurface<Scalar> s;
-  for (auto& c : cols) c = insert_knots(c, extra);
+  for (auto& c : cols) c = insert_knots(std::move(c), extra);
   s.degree_u = cols.front().degree();
   s.degree_v = profile.degree;
   s.knots_u = cols.front().knots();
@@ -90,14 +90,18 @@ NurbsSurface<Scalar> to_nurbs(const HomogeneousSurface<Scalar>& h) {
   s.degree_v = h.degree_v;
   s.knots_u = h.knots_u;
   s.knots_v = h.knots_v;
+  s.points.reserve(h.poles.size());
+  s.weights.reserve(h.poles.size());
   for (const auto& row : h.poles) {
-    s.points.emplace_back();
-    s.weights.emplace_back();
+    auto& points = s.points.emplace_back();
+    auto& weights = s.weights.emplace_back();
+    points.reserve(row.size());  // one allocation a row, not one a doubling
+    weights.reserve(row.size());
     for (const auto& p : row) {
       if (!(p(0) > Scalar(0)))
         throw Error(Errc::numerical_failure, "a surface weight is not positive");
-      s.points.back().push_back((p.template tail<3>() / p(0)).eval());
-      s.weights.back().push_back(Scalar(p(0) / wmax));
+      points.push_back((p.template tail<3>() / p(0)).eval());
+      weights.push_back(Scalar(p(0) / wmax));
     }
   }
   return s;

@@ -98,20 +98,40 @@ std::pair<int, std::vector<Scalar>> matrix_pieces(const MotionFactors<Scalar>& f
   const auto tr1 = kernel::bezier_pieces(f.translation, x);
   std::vector<Bernstein<V3>> tr2;
   if (method == kernel::TranslationMethod::trt) tr2 = kernel::bezier_pieces(*f.translation2, x);
-  // The polar form of q -> [[|q|^2, 0], [0, U(q)]]: its Bezier product with itself is the
-  // piece's |Q_rot|^2 and U, degree 2k.
-  const auto polar = [](const Q& p, const Q& q) {
-    const Q s = p + q;
-    M4 m = M4::Zero();
-    m(0, 0) = p.dot(q);
-    m.template block<3, 3>(1, 1) =
-        ((kernel::rotation_matrix_unnormalized(s) - kernel::rotation_matrix_unnormalized(p) -
-          kernel::rotation_matrix_unnormalized(q)) /
-         Scalar(2))
-            .eval();
-    return m;
-  };
   const auto times = [](const M3& u, const V3& v) { return V3(u * v); };
+  // The polar form of q -> [[|q|^2, 0], [0, U(q)]] is symmetric and bilinear:
+  // polar(p, q) = [[p.q, 0], [0, (U(p + q) - U(p) - U(q)) / 2]], polar(q, q) = the form at q.
+  // A rotation piece's Bezier product with itself under it (the piece's |Q_rot|^2 and U,
+  // degree 2k) takes each unordered pair of coefficients once, with each U(q_i) made once.
+  const int kr = f.rotation.degree();
+  std::vector<Scalar> pair_weight;  // C(k,i) C(k,j) / C(2k,i+j), doubled off the diagonal
+  for (int i = 0; i <= kr; ++i)
+    for (int j = i; j <= kr; ++j)
+      pair_weight.push_back(
+          Scalar(kernel::binomial<Scalar>(kr, i) * kernel::binomial<Scalar>(kr, j) /
+                 kernel::binomial<Scalar>(2 * kr, i + j) * Scalar(i == j ? 1 : 2)));
+  std::vector<M3> u_of;
+  const auto square = [&](const Bernstein<Q>& r) {
+    const auto& q = r.coeffs();
+    u_of.clear();
+    for (const Q& qi : q) u_of.push_back(kernel::rotation_matrix_unnormalized(qi));
+    std::vector<M4> c(static_cast<std::size_t>(2 * kr + 1), M4::Zero());
+    std::size_t w = 0;
+    for (std::size_t i = 0; i < q.size(); ++i)
+      for (std::size_t j = i; j < q.size(); ++j, ++w) {
+        M4 m = M4::Zero();
+        m(0, 0) = q[i].dot(q[j]);
+        if (i == j)
+          m.template block<3, 3>(1, 1) = u_of[i];
+        else
+          m.template block<3, 3>(1, 1) =
+              ((kernel::rotation_matrix_unnormalized(Q(q[i] + q[j])) - u_of[i] - u_of[j]) /
+               Scalar(2))
+                  .eval();
+        c[i + j] += kernel::scale(pair_weight[w], m);
+      }
+    return Bernstein<M4>(std::move(c), r.a(), r.b());
+  };
   // Degree: 2k for |Q_rot|^2 and U; the translation column 2k + l (TR), 2k + max(l1, l2)
   // (TRT), l (minimal order).
   const int k2 = 2 * f.rotation.degree();
@@ -119,11 +139,12 @@ std::pair<int, std::vector<Scalar>> matrix_pieces(const MotionFactors<Scalar>& f
       k2, f.translation.degree() + (method == kernel::TranslationMethod::minimal ? 0 : k2));
   if (method == kernel::TranslationMethod::trt) d = std::max(d, k2 + f.translation2->degree());
   for (std::size_t k = 0; k < rot.size(); ++k) {
-    const Bernstein<M4> nu = kernel::product(rot[k], rot[k], polar);
+    const Bernstein<M4> nu = square(rot[k]);
     // Column 0 below the weight: a = |Q_rot|^2 p (TR), |Q_rot|^2 p1 + U p2 (TRT), w (minimal).
     Bernstein<V3> a = tr1[k];
     if (method != kernel::TranslationMethod::minimal) {
       std::vector<Scalar> n2;
+      n2.reserve(nu.coeffs().size());
       for (const auto& m : nu.coeffs()) n2.push_back(m(0, 0));
       a = kernel::product(Bernstein<Scalar>(std::move(n2), nu.a(), nu.b()), tr1[k]);
     }
