@@ -103,19 +103,19 @@ std::pair<int, std::vector<Scalar>> matrix_pieces(const MotionFactors<Scalar>& f
   // polar(p, q) = [[p.q, 0], [0, (U(p + q) - U(p) - U(q)) / 2]], polar(q, q) = the form at q.
   // A rotation piece's Bezier product with itself under it (the piece's |Q_rot|^2 and U,
   // degree 2k) takes each unordered pair of coefficients once, with each U(q_i) made once.
-  const int kr = f.rotation.degree();
+  const int kr = f.rotation.degree(), k2 = 2 * kr;
   std::vector<Scalar> pair_weight;  // C(k,i) C(k,j) / C(2k,i+j), doubled off the diagonal
   for (int i = 0; i <= kr; ++i)
     for (int j = i; j <= kr; ++j)
       pair_weight.push_back(
           Scalar(kernel::binomial<Scalar>(kr, i) * kernel::binomial<Scalar>(kr, j) /
-                 kernel::binomial<Scalar>(2 * kr, i + j) * Scalar(i == j ? 1 : 2)));
+                 kernel::binomial<Scalar>(k2, i + j) * Scalar(i == j ? 1 : 2)));
   std::vector<M3> u_of;
   const auto square = [&](const Bernstein<Q>& r) {
     const auto& q = r.coeffs();
     u_of.clear();
     for (const Q& qi : q) u_of.push_back(kernel::rotation_matrix_unnormalized(qi));
-    std::vector<M4> c(static_cast<std::size_t>(2 * kr + 1), M4::Zero());
+    std::vector<M4> c(static_cast<std::size_t>(k2 + 1), M4::Zero());
     std::size_t w = 0;
     for (std::size_t i = 0; i < q.size(); ++i)
       for (std::size_t j = i; j < q.size(); ++j, ++w) {
@@ -134,7 +134,6 @@ std::pair<int, std::vector<Scalar>> matrix_pieces(const MotionFactors<Scalar>& f
   };
   // Degree: 2k for |Q_rot|^2 and U; the translation column 2k + l (TR), 2k + max(l1, l2)
   // (TRT), l (minimal order).
-  const int k2 = 2 * f.rotation.degree();
   int d = std::max(
       k2, f.translation.degree() + (method == kernel::TranslationMethod::minimal ? 0 : k2));
   if (method == kernel::TranslationMethod::trt) d = std::max(d, k2 + f.translation2->degree());
