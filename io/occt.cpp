@@ -76,6 +76,7 @@
 #include <qmotion/kernel/error.hpp>
 #include <qmotion/sweep/surface.hpp>
 #include <sstream>
+#include <string_view>
 
 namespace qmotion::io {
 namespace {
@@ -620,27 +621,67 @@ void write_step(const std::string& path, const std::vector<sweep::NurbsCurve<dou
 }
 
 namespace {
-/// Checks an IGES file's structure before OpenCASCADE parses it: OpenCASCADE 7.6 crashes
-/// on a rational B-spline entity (126/128) whose parameter record is cut short. Every
-/// directory entry must point at parameter lines that exist, and every 126/128 record must
-/// hold all the numbers its K and M announce (within bounds that keep the work finite).
-/// Files declaring other delimiters than ',' and ';' are checked with theirs.
+/// Checks an IGES file's structure before OpenCASCADE parses it. OpenCASCADE 7.6 crashes
+/// on two kinds of damage:
+/// - a rational B-spline entity (126/128) whose parameter record is cut short;
+/// - parameter lines with no directory entry before them. Its C parser keeps the last
+///   entry of the previous IGES file it read in a static pointer, freed with that file,
+///   and files its parameters under it (a use after free: only a second read in one
+///   process can crash, as a library user or the Python module does).
+/// So every record must be what OpenCASCADE's line reader takes whole: 80 columns (it
+/// cuts longer lines in 80-column pieces, and skips a short first line), printable
+/// characters, its section letter in column 73 and its sequence number in 74-80. The
+/// sections come in the order S, G, D, P, T (OpenCASCADE skips a line out of order),
+/// parameter lines only after a directory, and each directory entry has its two lines
+/// (OpenCASCADE leaves the second half of a lone one uninitialised).
+/// Every directory entry must point at parameter lines that exist, and every 126/128
+/// record must hold all the numbers its K and M announce (within bounds that keep the
+/// work finite). Files declaring other delimiters than ',' and ';' are checked with theirs.
 void check_iges_structure(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
+  const std::string text = read_text_file(path);
   std::vector<std::string> d, p;
-  std::string g, line;
-  for (int number = 1; std::getline(in, line); ++number) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.find_first_not_of(" \t") == std::string::npos) continue;
-    const char section = line.size() >= 73 ? line[72] : ' ';
-    if (std::string("SGDPT").find(section) == std::string::npos || section == '\0')
-      throw Error(Errc::invalid_input,
-                  path + ": a damaged IGES file (line " + std::to_string(number) +
-                      ": not an 80-column record with its section letter in column 73)");
-    if (section == 'G') g += line.substr(0, 72);
-    if (section == 'D') d.push_back(line);
-    if (section == 'P') p.push_back(line);
+  std::string g;
+  std::size_t line_start = 0;
+  int last_section = 0;  // index in "SGDPT", 0 before the first record
+  for (int number = 1; line_start < text.size(); ++number) {
+    // Lines end in LF, CR LF or CR alone (OpenCASCADE reads all three).
+    std::size_t line_end = text.find_first_of("\r\n", line_start);
+    if (line_end == std::string::npos) line_end = text.size();
+    const std::string_view line(text.data() + line_start, line_end - line_start);
+    line_start = line_end + 1;
+    if (line_end + 1 < text.size() && text[line_end] == '\r' && text[line_end + 1] == '\n')
+      ++line_start;
+    if (line.find_first_not_of(" \t") == std::string_view::npos) continue;
+    auto damaged_line = [&](const std::string& what) {
+      throw Error(Errc::invalid_input, path + ": a damaged IGES file (line " +
+                                           std::to_string(number) + ": " + what + ")");
+    };
+    if (line.size() != 80)
+      damaged_line("a record of " + std::to_string(line.size()) + " columns, not 80");
+    for (const char c : line)
+      if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) > 0x7e)
+        damaged_line("a character that is not printable ASCII");
+    const auto section = std::string_view("SGDPT").find(line[72]);
+    if (section == std::string_view::npos)
+      damaged_line("no section letter S, G, D, P or T in column 73");
+    const std::string_view seq = line.substr(73);
+    const auto digits = seq.find_first_not_of(' ');
+    if (digits == std::string_view::npos ||
+        seq.find_first_not_of("0123456789", digits) != std::string_view::npos)
+      damaged_line("no sequence number in columns 74-80");
+    const int order = static_cast<int>(section) + 1;
+    if (order < last_section)
+      damaged_line(std::string("a ") + line[72] + " line after the " + "SGDPT"[last_section - 1] +
+                   " section");
+    if (line[72] == 'P' && d.empty()) damaged_line("parameter lines before any directory entry");
+    last_section = order;
+    if (line[72] == 'G') g += line.substr(0, 72);
+    if (line[72] == 'D') d.emplace_back(line);
+    if (line[72] == 'P') p.emplace_back(line);
   }
+  if (d.size() % 2 != 0)
+    throw Error(Errc::invalid_input,
+                path + ": a damaged IGES file (the last directory entry has one line of its two)");
   char delim = ',', rec = ';';
   if (g.size() >= 3 && g.compare(0, 2, "1H") == 0) delim = g[2];
   {

@@ -1,6 +1,7 @@
 // tests/io/occt_test.cpp mirrors io/occt.hpp: STEP/IGES written and read back through
 // OpenCASCADE, bit for bit.
 #include <filesystem>
+#include <fstream>
 #include <qmotion/io/json_number.hpp>
 #include <qmotion/io/occt.hpp>
 #include <qmotion/io/profiles.hpp>
@@ -140,6 +141,113 @@ TEST(OcctErrors, BadFilesAndGeometryAreRefused) {
   EXPECT_TRUE(throws_error([&] { io::write_step(out.string(), high, {}); }, Errc::export_failed,
                            {"OpenCASCADE"}));
   EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(OcctErrors, DamagedIgesRecordsAreRefusedEvenAfterAGoodRead) {
+  // OpenCASCADE's IGES parser keeps the last directory entry of the file it read before in
+  // a static pointer and frees it with that file: parameter lines with no directory entry
+  // before them were filed under freed memory (a crash the fuzzer found on a second read).
+  // So each case reads a good file first, then a damaged variant of it.
+  const auto c = sweep::arc(7.0 / 3.0, 10.0, 300.0);
+  const auto good = scratch("good.igs");
+  io::write_iges(good.string(), c, {});
+  const std::string text = io::read_text_file(good.string());
+  std::vector<std::string> lines;
+  for (std::size_t at = 0; at < text.size();) {
+    const auto end = text.find('\n', at);
+    lines.push_back(text.substr(at, end - at));
+    at = end == std::string::npos ? text.size() : end + 1;
+  }
+  for (const auto& l : lines) ASSERT_EQ(l.size(), 80u) << l;  // what the checks rest on
+  auto joined = [](const std::vector<std::string>& ls, const std::string& eol) {
+    std::string s;
+    for (const auto& l : ls) s += l + eol;
+    return s;
+  };
+  auto first_of = [&](char section) {
+    for (std::size_t i = 0; i < lines.size(); ++i)
+      if (lines[i][72] == section) return i;
+    return lines.size();
+  };
+  const std::size_t d0 = first_of('D'), p0 = first_of('P');
+  ASSERT_LT(d0, p0);
+  ASSERT_LT(p0, lines.size());
+
+  struct Case {
+    const char* name;
+    std::string text;
+    const char* needle;
+  };
+  std::vector<Case> cases;
+  {
+    auto ls = lines;  // the fuzzer's find: parameter lines and no directory
+    ls.erase(ls.begin() + static_cast<long>(d0), ls.begin() + static_cast<long>(p0));
+    cases.push_back({"no_directory", joined(ls, "\n"), "parameter lines before any directory"});
+  }
+  {
+    auto ls = lines;
+    ls[p0] += "12345";
+    cases.push_back({"long_record", joined(ls, "\n"), "85 columns, not 80"});
+  }
+  {
+    auto ls = lines;
+    ls[d0].pop_back();
+    cases.push_back({"short_record", joined(ls, "\n"), "79 columns, not 80"});
+  }
+  {
+    auto ls = lines;
+    ls[p0][10] = '\x1a';  // OpenCASCADE's reader ends the file at a DOS end-of-file mark
+    cases.push_back({"control_character", joined(ls, "\n"), "not printable ASCII"});
+  }
+  {
+    auto ls = lines;
+    ls[p0][72] = 'X';
+    cases.push_back({"no_section_letter", joined(ls, "\n"), "no section letter"});
+  }
+  {
+    auto ls = lines;
+    ls[d0].replace(73, 7, "  1a   ");
+    cases.push_back({"no_sequence_number", joined(ls, "\n"), "no sequence number"});
+  }
+  {
+    auto ls = lines;  // a directory line moved after the parameters
+    const std::string moved = ls[d0];
+    ls.erase(ls.begin() + static_cast<long>(d0));
+    ls.insert(ls.begin() + static_cast<long>(p0), moved);
+    cases.push_back({"out_of_order", joined(ls, "\n"), "a D line after the P section"});
+  }
+  {
+    auto ls = lines;  // the second line of the last directory entry lost
+    ls.erase(ls.begin() + static_cast<long>(p0) - 1);
+    cases.push_back({"half_directory_entry", joined(ls, "\n"), "one line of its two"});
+  }
+  for (const auto& k : cases) {
+    SCOPED_TRACE(k.name);
+    ASSERT_NO_THROW(io::read_cad(good.string(), false));
+    const auto bad = scratch(std::string(k.name) + ".igs");
+    {
+      std::ofstream out(bad, std::ios::binary);
+      out << k.text;
+    }
+    EXPECT_TRUE(throws_error([&] { io::read_cad(bad.string(), false); }, Errc::invalid_input,
+                             {bad.string(), "damaged IGES", k.needle}));
+    EXPECT_TRUE(throws_error([&] { io::read_profile(bad.string(), "mm"); }, Errc::invalid_input,
+                             {bad.string(), "damaged IGES"}));
+  }
+  // The three line ends OpenCASCADE reads: the same curve, bit for bit.
+  const auto want = io::read_cad(good.string(), false).curve;
+  for (const std::string eol : {"\r\n", "\r"}) {
+    const auto f = scratch(eol.size() == 2 ? "crlf.igs" : "cr.igs");
+    {
+      std::ofstream out(f, std::ios::binary);
+      out << joined(lines, eol);
+    }
+    const auto got = io::read_cad(f.string(), false).curve;
+    EXPECT_EQ(got.knots, want.knots);
+    EXPECT_EQ(got.weights, want.weights);
+    ASSERT_EQ(got.points.size(), want.points.size());
+    for (std::size_t i = 0; i < got.points.size(); ++i) EXPECT_EQ(got.points[i], want.points[i]);
+  }
 }
 
 TEST(Profiles, EveryKindReads) {
