@@ -43,25 +43,45 @@ std::vector<kernel::BSpline<Vec4<Scalar>>> trajectories(const Motion<Scalar>& mo
 /// The kinematic surface y(t, v) = M(t) x(v) of a rational profile (SPEC §2.7): its
 /// homogeneous poles are the u-poles of the trajectories of the profile's homogeneous
 /// poles X_j = (w_j, w_j x_j), since M(t) acts linearly. Exact, no fitting; u is t. Knots
-/// are inserted along u until every weight is positive (SPEC §4).
+/// are inserted along u until every weight is positive (SPEC §4). With the motion's factors
+/// the matrix spline M is made once and pole i of column j is M_i X_j (the poles of M X are
+/// M's poles times X: a linear map commutes with the blossoms that make them).
 template <typename Scalar>
 HomogeneousSurface<Scalar> kinematic_surface(const Motion<Scalar>& m,
                                              const NurbsCurve<Scalar>& profile) {
   std::vector<Vec4<Scalar>> X;
+  X.reserve(profile.points.size());
   for (std::size_t j = 0; j < profile.points.size(); ++j) {
     Vec4<Scalar> x;
     x << profile.weights[j], profile.points[j] * profile.weights[j];
     X.push_back(x);
   }
+  HomogeneousSurface<Scalar> s;
+  s.degree_v = profile.degree;
+  s.knots_v = profile.knots;
+  if (m.factors) {
+    auto M = matrix_from_factors(*m.factors);
+    // Every column's weight function is w_j |Q_rot|^2, M's first row: one refinement
+    // serves all, found on the trajectory of (1, 0, 0, 0).
+    Vec4<Scalar> e0 = Vec4<Scalar>::Zero();
+    e0(0) = Scalar(1);
+    M = insert_knots(std::move(M), knots_for_positive_weights(apply(M, e0)));
+    s.degree_u = M.degree();
+    s.knots_u = M.knots();
+    s.poles.reserve(M.ctrl().size());
+    for (const auto& Mi : M.ctrl()) {
+      auto& row = s.poles.emplace_back();
+      row.reserve(X.size());
+      for (const auto& x : X) row.push_back(Vec4<Scalar>(Mi * x));
+    }
+    return s;
+  }
   auto cols = trajectories(m, X);
   // Every column's weight function is w_j times the motion's: one refinement serves all.
   const auto extra = knots_for_positive_weights(cols.front());
-  HomogeneousSurface<Scalar> s;
   for (auto& c : cols) c = insert_knots(std::move(c), extra);
   s.degree_u = cols.front().degree();
-  s.degree_v = profile.degree;
   s.knots_u = cols.front().knots();
-  s.knots_v = profile.knots;
   s.poles.assign(cols.front().ctrl().size(), std::vector<Vec4<Scalar>>(cols.size()));
   for (std::size_t j = 0; j < cols.size(); ++j)
     for (std::size_t i = 0; i < cols[j].ctrl().size(); ++i) s.poles[i][j] = cols[j].ctrl()[i];

@@ -219,6 +219,41 @@ TEST(Trajectory, PointsMappedSpanBySpanAreTheMatrixSplinesImages) {
   }
 }
 
+TEST(KinematicSurface, ItsColumnsAreTheProfilePolesTrajectoriesExactly) {
+  // With the factors the surface is made from the matrix spline M once (pole (i, j) =
+  // M_i X_j): in rational arithmetic each column is trajectories_from_factors' spline of
+  // that homogeneous pole, knots and poles, for a rational profile (a circle).
+  const auto P = io::to_poses_exact(io::read_poses(test_data("poses/rational_exact.json")));
+  std::vector<Rational> t;
+  for (const auto& p : P) t.push_back(*p.t);
+  const auto profile = sweep::circle(Rational(7));
+  std::vector<sweep::Vec4<Rational>> X;
+  for (std::size_t j = 0; j < profile.points.size(); ++j) {
+    sweep::Vec4<Rational> x;
+    x << profile.weights[j], profile.points[j] * profile.weights[j];
+    X.push_back(x);
+  }
+  for (auto tr : {TranslationMethod::tr, TranslationMethod::minimal})
+    for (int k = 1; k <= 2; ++k) {
+      SCOPED_TRACE(std::string(kernel::to_string(tr)) + " k = " + std::to_string(k));
+      const auto r = exact_spline(P, t, tr, k);
+      const auto s = sweep::kinematic_surface(r, profile);
+      auto y = sweep::trajectories_from_factors(*r.factors, X);
+      const auto extra = sweep::knots_for_positive_weights(y.front());
+      ASSERT_EQ(s.poles.front().size(), X.size());
+      for (std::size_t j = 0; j < X.size(); ++j) {
+        y[j] = sweep::insert_knots(std::move(y[j]), extra);
+        EXPECT_EQ(s.degree_u, y[j].degree());
+        EXPECT_EQ(s.knots_u, y[j].knots());
+        ASSERT_EQ(s.poles.size(), y[j].ctrl().size());
+        for (std::size_t i = 0; i < s.poles.size(); ++i)
+          ASSERT_TRUE(s.poles[i][j] == y[j].ctrl()[i]) << "pole " << i << ", " << j;
+      }
+      EXPECT_EQ(s.knots_v, profile.knots);
+      EXPECT_EQ(s.degree_v, profile.degree);
+    }
+}
+
 std::vector<std::pair<std::string, sweep::NurbsCurve<double>>> profiles() {
   return {
       {"parabola.json",
@@ -282,6 +317,29 @@ TEST(PositiveWeights, NegativeBernsteinWeightsAreRefinedAwayWithTheSameGeometry)
   const auto s = sweep::to_nurbs(sweep::kinematic_surface(bare(m), sweep::circle(4.0)));
   for (const auto& row : s.weights) EXPECT_TRUE(all_positive(row));
   EXPECT_LE(surface_deviation(s, m, sweep::circle(4.0)), 1e-11);
+}
+
+TEST(PositiveWeights, TheMatrixSplinesNegativeWeightsAreRefinedAwayToo) {
+  // The same motion with its TR factors: the kinematic surface is made from the matrix
+  // spline M, whose weight row |Q_rot|^2 has the Bernstein coefficient -1 too.
+  using Q = kernel::Quaternion<double>;
+  const auto m = negative_weight_motion();
+  const sweep::MotionFactors<double> f{
+      TranslationMethod::tr,
+      kernel::BSpline<Q>::from_bezier(kernel::Bernstein<Q>({Q(1, 0, 0, 0), Q(-1, 0.3, 0, 0)})),
+      kernel::BSpline<V3>::from_bezier(kernel::Bernstein<V3>({V3(0, 0, 0), V3(10, 5, 0)})),
+      std::nullopt};
+  ASSERT_TRUE(sweep::factors_match(f, m));
+  const auto M = sweep::matrix_from_factors(f);
+  double least = 1;
+  for (const auto& Mi : M.ctrl()) least = std::min(least, Mi(0, 0));
+  EXPECT_LT(least, 0.0);  // the premise
+  const auto profile = sweep::circle(4.0);
+  const auto s = sweep::to_nurbs(sweep::kinematic_surface(kernel::Motion<double>(m, f), profile));
+  for (const auto& row : s.weights) EXPECT_TRUE(all_positive(row));
+  EXPECT_EQ(s.degree_u, 3);                       // 2k + l, not the motion's 2n = 4
+  EXPECT_GT(s.knots_u.size(), M.knots().size());  // knots were inserted
+  EXPECT_LE(surface_deviation(s, m, profile), 1e-11);
 }
 
 TEST(PositiveWeights, AMotionWithAPoleCannotBeMadePositive) {
