@@ -65,7 +65,8 @@ HomogeneousSurface<Scalar> kinematic_surface(const Motion<Scalar>& m,
     // serves all, found on the trajectory of (1, 0, 0, 0).
     Vec4<Scalar> e0 = Vec4<Scalar>::Zero();
     e0(0) = Scalar(1);
-    M = insert_knots(std::move(M), knots_for_positive_weights(apply(M, e0)));
+    const auto extra = knots_for_positive_weights(apply(M, e0));  // before M is moved from
+    M = insert_knots(std::move(M), extra);
     s.degree_u = M.degree();
     s.knots_u = M.knots();
     s.poles.reserve(M.ctrl().size());
