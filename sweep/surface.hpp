@@ -44,8 +44,11 @@ std::vector<kernel::BSpline<Vec4<Scalar>>> trajectories(const Motion<Scalar>& mo
 /// homogeneous poles are the u-poles of the trajectories of the profile's homogeneous
 /// poles X_j = (w_j, w_j x_j), since M(t) acts linearly. Exact, no fitting; u is t. Knots
 /// are inserted along u until every weight is positive (SPEC §4). With the motion's factors
-/// the matrix spline M is made once and pole i of column j is M_i X_j (the poles of M X are
-/// M's poles times X: a linear map commutes with the blossoms that make them).
+/// and four profile poles or more, the matrix spline M is made once and pole i of column j
+/// is M_i X_j (the poles of M X are M's poles times X: a linear map commutes with the
+/// blossoms that make them): `sweep` with a circle (9 poles) on 10^4 poses, 0.471 -> 0.429 s.
+/// With fewer, each column's own trajectory costs no more than M's 16 entries (a segment on
+/// the 200-pose helix: 0.32 ms, 0.33-0.34 ms through M) and keeps the poles as before.
 template <typename Scalar>
 HomogeneousSurface<Scalar> kinematic_surface(const Motion<Scalar>& m,
                                              const NurbsCurve<Scalar>& profile) {
@@ -59,7 +62,7 @@ HomogeneousSurface<Scalar> kinematic_surface(const Motion<Scalar>& m,
   HomogeneousSurface<Scalar> s;
   s.degree_v = profile.degree;
   s.knots_v = profile.knots;
-  if (m.factors) {
+  if (m.factors && X.size() >= 4) {
     auto M = matrix_from_factors(*m.factors);
     // Every column's weight function is w_j |Q_rot|^2, M's first row: one refinement
     // serves all, found on the trajectory of (1, 0, 0, 0).

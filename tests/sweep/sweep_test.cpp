@@ -334,12 +334,16 @@ TEST(PositiveWeights, TheMatrixSplinesNegativeWeightsAreRefinedAwayToo) {
   double least = 1;
   for (const auto& Mi : M.ctrl()) least = std::min(least, Mi(0, 0));
   EXPECT_LT(least, 0.0);  // the premise
-  const auto profile = sweep::circle(4.0);
-  const auto s = sweep::to_nurbs(sweep::kinematic_surface(kernel::Motion<double>(m, f), profile));
-  for (const auto& row : s.weights) EXPECT_TRUE(all_positive(row));
-  EXPECT_EQ(s.degree_u, 3);                       // 2k + l, not the motion's 2n = 4
-  EXPECT_GT(s.knots_u.size(), M.knots().size());  // knots were inserted
-  EXPECT_LE(surface_deviation(s, m, profile), 1e-11);
+  // A circle (nine poles: through M) and a segment (two: each pole's own trajectory).
+  for (const auto& profile :
+       {sweep::circle(4.0), sweep::segment<double>(V3(1, 2, 3), V3(-4, 0, 2))}) {
+    SCOPED_TRACE(profile.points.size());
+    const auto s = sweep::to_nurbs(sweep::kinematic_surface(kernel::Motion<double>(m, f), profile));
+    for (const auto& row : s.weights) EXPECT_TRUE(all_positive(row));
+    EXPECT_EQ(s.degree_u, 3);                       // 2k + l, not the motion's 2n = 4
+    EXPECT_GT(s.knots_u.size(), M.knots().size());  // knots were inserted
+    EXPECT_LE(surface_deviation(s, m, profile), 1e-11);
+  }
 }
 
 TEST(PositiveWeights, AMotionWithAPoleCannotBeMadePositive) {
