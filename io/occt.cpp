@@ -69,8 +69,10 @@
 #include <gp_Pln.hxx>
 #include <limits>
 #include <qmotion/io/atomic_file.hpp>
+#include <qmotion/io/isolated.hpp>
 #include <qmotion/io/json_number.hpp>
 #include <qmotion/io/occt.hpp>
+#include <qmotion/io/occt_unchecked.hpp>
 #include <qmotion/io/progress.hpp>
 #include <qmotion/io/units.hpp>
 #include <qmotion/kernel/error.hpp>
@@ -770,17 +772,14 @@ void refuse_failed_load(XSControl_Reader& reader, const std::string& path, const
                                          what + ")");
   }
 }
-}  // namespace
 
-CadGeometry read_cad(const std::string& path, bool want_surface, const std::string& units) {
-  if (!std::filesystem::is_regular_file(path))
-    throw Error(Errc::invalid_input, path + ": cannot open file for reading");
-  if (const auto size = std::filesystem::file_size(path); size > kMaxFileBytes)
-    throw Error(Errc::invalid_input, path + ": a file of " + std::to_string(size) +
-                                         " bytes (at most " + std::to_string(kMaxFileBytes) + ")");
+/// read_cad's work, run in the child process: everything but CadGeometry::value, whose
+/// OpenCASCADE B-splines go to `surfaces` (one per face that is not a plane) and `curve`.
+CadGeometry read_cad_here(const std::string& path, bool want_surface, const std::string& ext,
+                          const UnitNames& u, bool prechecks,
+                          std::vector<Handle(Geom_BSplineSurface)>& surfaces,
+                          Handle(Geom_BSplineCurve) & curve_out) {
   quiet_occt();
-  const std::string ext = lower_extension(path);
-  const UnitNames u = unit_names(units);
   CadGeometry g;
   TopoDS_Shape shape;
   try {
@@ -791,7 +790,7 @@ CadGeometry read_cad(const std::string& path, bool want_surface, const std::stri
       STEPControl_Reader reader;
       if (reader.ReadFile(path.c_str()) != IFSelect_RetDone)
         throw Error(Errc::invalid_input, path + ": not a readable STEP file");
-      refuse_failed_load(reader, path, "STEP");
+      if (prechecks) refuse_failed_load(reader, path, "STEP");
       TColStd_SequenceOfAsciiString len, ang, solid;
       reader.FileUnits(len, ang, solid);
       if (len.Length() > 0) g.file_units = lower(len.First().ToCString());
@@ -802,11 +801,10 @@ CadGeometry read_cad(const std::string& path, bool want_surface, const std::stri
       Interface_Static::SetCVal("xstep.cascade.unit", u.step);
       UnitsMethods::SetCasCadeLengthUnit(u.mm);
       Interface_Static::SetIVal("read.iges.bspline.continuity", 0);  // keep C0 B-splines whole
-      check_iges_structure(path);
       IGESControl_Reader reader;
       if (reader.ReadFile(path.c_str()) != IFSelect_RetDone)
         throw Error(Errc::invalid_input, path + ": not a readable IGES file");
-      refuse_failed_load(reader, path, "IGES");
+      if (prechecks) refuse_failed_load(reader, path, "IGES");
       const auto model = Handle(IGESData_IGESModel)::DownCast(reader.Model());
       if (!model.IsNull() && !model->GlobalSection().UnitName().IsNull())
         g.file_units = lower(model->GlobalSection().UnitName()->ToCString());
@@ -848,10 +846,7 @@ CadGeometry read_cad(const std::string& path, bool want_surface, const std::stri
         Handle(Geom_BSplineSurface) bs = Handle(Geom_BSplineSurface)::DownCast(surf);
         if (bs.IsNull()) bs = GeomConvert::SurfaceToBSplineSurface(surf);
         face.surface = from_occt(bs);
-        face.value = [bs](double u, double v) {
-          const gp_Pnt p = bs->Value(u, v);
-          return Eigen::Vector3d(p.X(), p.Y(), p.Z());
-        };
+        surfaces.push_back(bs);
         g.face_list.push_back(std::move(face));
       }
       const auto first = std::find_if(g.face_list.begin(), g.face_list.end(),
@@ -860,7 +855,6 @@ CadGeometry read_cad(const std::string& path, bool want_surface, const std::stri
         throw Error(Errc::invalid_input, path + ": the file holds no surface (face)");
       g.is_surface = true;
       g.surface = first->surface;
-      g.value = first->value;
     } else {
       TopExp_Explorer e(shape, TopAbs_EDGE);
       if (!e.More()) throw Error(Errc::invalid_input, path + ": the file holds no curve (edge)");
@@ -878,10 +872,7 @@ CadGeometry read_cad(const std::string& path, bool want_surface, const std::stri
       }
       Handle(Geom_BSplineCurve) bc = whole_curve(curve, first, last);
       g.curve = from_occt(bc);
-      g.value = [bc](double t, double) {
-        const gp_Pnt p = bc->Value(t);
-        return Eigen::Vector3d(p.X(), p.Y(), p.Z());
-      };
+      curve_out = bc;
       g.wire = profile_edges(shape);
       if (g.wire.empty()) g.wire.push_back(g.curve);
     }
@@ -890,6 +881,260 @@ CadGeometry read_cad(const std::string& path, bool want_surface, const std::stri
                 path + ": OpenCASCADE could not read it: " + e.GetMessageString());
   }
   return g;
+}
+
+void put_nurbs(ByteWriter& w, const sweep::NurbsCurve<double>& c) {
+  w.put(c.degree);
+  w.put_vector(c.knots);
+  w.put(c.points.size());
+  for (const auto& p : c.points) w.put(std::array<double, 3>{p.x(), p.y(), p.z()});
+  w.put_vector(c.weights);
+}
+
+sweep::NurbsCurve<double> get_nurbs_curve(ByteReader& r) {
+  sweep::NurbsCurve<double> c;
+  c.degree = r.get<int>();
+  c.knots = r.get_vector<double>();
+  for (const auto& p : r.get_vector<std::array<double, 3>>())
+    c.points.emplace_back(p[0], p[1], p[2]);
+  c.weights = r.get_vector<double>();
+  return c;
+}
+
+void put_nurbs(ByteWriter& w, const sweep::NurbsSurface<double>& s) {
+  w.put(s.degree_u);
+  w.put(s.degree_v);
+  w.put_vector(s.knots_u);
+  w.put_vector(s.knots_v);
+  w.put(s.points.size());
+  for (std::size_t i = 0; i < s.points.size(); ++i) {
+    std::vector<std::array<double, 3>> row;
+    for (const auto& p : s.points[i]) row.push_back({p.x(), p.y(), p.z()});
+    w.put_vector(row);
+    w.put_vector(s.weights[i]);
+  }
+}
+
+sweep::NurbsSurface<double> get_nurbs_surface(ByteReader& r) {
+  sweep::NurbsSurface<double> s;
+  s.degree_u = r.get<int>();
+  s.degree_v = r.get<int>();
+  s.knots_u = r.get_vector<double>();
+  s.knots_v = r.get_vector<double>();
+  const auto rows = r.get<std::size_t>();
+  for (std::size_t i = 0; i < rows; ++i) {
+    s.points.emplace_back();
+    for (const auto& p : r.get_vector<std::array<double, 3>>())
+      s.points.back().emplace_back(p[0], p[1], p[2]);
+    s.weights.push_back(r.get_vector<double>());
+  }
+  return s;
+}
+
+// OpenCASCADE's own B-splines as the child read them (periodic or not, unclamped or not),
+// rebuilt in this process for CadGeometry::value: its evaluation stays OpenCASCADE's of
+// the file's object, independent of from_occt's conversion to our clamped NURBS.
+template <typename Array>
+std::vector<double> reals(const Array& a) {
+  return std::vector<double>(a.begin(), a.end());
+}
+
+template <typename Array>
+std::vector<int> ints(const Array& a) {
+  return std::vector<int>(a.begin(), a.end());
+}
+
+void put_occt(ByteWriter& w, const Handle(Geom_BSplineCurve) & c) {
+  w.put(c->Degree());
+  w.put(static_cast<char>(c->IsPeriodic()));
+  w.put_vector(reals(c->Knots()));
+  w.put_vector(ints(c->Multiplicities()));
+  std::vector<std::array<double, 4>> poles;
+  for (int i = 1; i <= c->NbPoles(); ++i) {
+    const gp_Pnt p = c->Pole(i);
+    poles.push_back({p.X(), p.Y(), p.Z(), c->Weight(i)});
+  }
+  w.put_vector(poles);
+}
+
+Handle(Geom_BSplineCurve) get_occt_curve(ByteReader& r) {
+  const int degree = r.get<int>();
+  const bool periodic = r.get<char>() != 0;
+  const auto k = r.get_vector<double>();
+  const auto m = r.get_vector<int>();
+  const auto poles = r.get_vector<std::array<double, 4>>();
+  TColStd_Array1OfReal knots(1, static_cast<int>(k.size())),
+      weights(1, static_cast<int>(poles.size()));
+  TColStd_Array1OfInteger mults(1, static_cast<int>(m.size()));
+  TColgp_Array1OfPnt points(1, static_cast<int>(poles.size()));
+  for (std::size_t i = 0; i < k.size(); ++i) knots.SetValue(static_cast<int>(i) + 1, k[i]);
+  for (std::size_t i = 0; i < m.size(); ++i) mults.SetValue(static_cast<int>(i) + 1, m[i]);
+  for (std::size_t i = 0; i < poles.size(); ++i) {
+    const auto& p = poles[i];
+    points.SetValue(static_cast<int>(i) + 1, gp_Pnt(p[0], p[1], p[2]));
+    weights.SetValue(static_cast<int>(i) + 1, p[3]);
+  }
+  return new Geom_BSplineCurve(points, weights, knots, mults, degree, periodic);
+}
+
+void put_occt(ByteWriter& w, const Handle(Geom_BSplineSurface) & s) {
+  w.put(s->UDegree());
+  w.put(s->VDegree());
+  w.put(static_cast<char>(s->IsUPeriodic()));
+  w.put(static_cast<char>(s->IsVPeriodic()));
+  w.put_vector(reals(s->UKnots()));
+  w.put_vector(ints(s->UMultiplicities()));
+  w.put_vector(reals(s->VKnots()));
+  w.put_vector(ints(s->VMultiplicities()));
+  w.put(s->NbVPoles());
+  std::vector<std::array<double, 4>> poles;
+  for (int i = 1; i <= s->NbUPoles(); ++i)
+    for (int j = 1; j <= s->NbVPoles(); ++j) {
+      const gp_Pnt p = s->Pole(i, j);
+      poles.push_back({p.X(), p.Y(), p.Z(), s->Weight(i, j)});
+    }
+  w.put_vector(poles);
+}
+
+Handle(Geom_BSplineSurface) get_occt_surface(ByteReader& r) {
+  const int du = r.get<int>(), dv = r.get<int>();
+  const bool pu = r.get<char>() != 0, pv = r.get<char>() != 0;
+  const auto uk = r.get_vector<double>();
+  const auto um = r.get_vector<int>();
+  const auto vk = r.get_vector<double>();
+  const auto vm = r.get_vector<int>();
+  const int nv = r.get<int>();
+  const auto poles = r.get_vector<std::array<double, 4>>();
+  if (nv < 1 || poles.size() % static_cast<std::size_t>(nv) != 0)
+    throw Error(Errc::internal, "an isolated reader's surface is garbled");
+  const int nu = static_cast<int>(poles.size() / static_cast<std::size_t>(nv));
+  auto array = [](const std::vector<double>& v) {
+    TColStd_Array1OfReal a(1, static_cast<int>(v.size()));
+    for (std::size_t i = 0; i < v.size(); ++i) a.SetValue(static_cast<int>(i) + 1, v[i]);
+    return a;
+  };
+  auto iarray = [](const std::vector<int>& v) {
+    TColStd_Array1OfInteger a(1, static_cast<int>(v.size()));
+    for (std::size_t i = 0; i < v.size(); ++i) a.SetValue(static_cast<int>(i) + 1, v[i]);
+    return a;
+  };
+  TColgp_Array2OfPnt points(1, nu, 1, nv);
+  TColStd_Array2OfReal weights(1, nu, 1, nv);
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      const auto& p = poles[static_cast<std::size_t>(i * nv + j)];
+      points.SetValue(i + 1, j + 1, gp_Pnt(p[0], p[1], p[2]));
+      weights.SetValue(i + 1, j + 1, p[3]);
+    }
+  return new Geom_BSplineSurface(points, weights, array(uk), array(vk), iarray(um), iarray(vm), du,
+                                 dv, pu, pv);
+}
+
+std::function<Eigen::Vector3d(double, double)> evaluator(Handle(Geom_BSplineSurface) s) {
+  return [s](double u, double v) {
+    const gp_Pnt p = s->Value(u, v);
+    return Eigen::Vector3d(p.X(), p.Y(), p.Z());
+  };
+}
+
+std::function<Eigen::Vector3d(double, double)> evaluator(Handle(Geom_BSplineCurve) c) {
+  return [c](double t, double) {
+    const gp_Pnt p = c->Value(t);
+    return Eigen::Vector3d(p.X(), p.Y(), p.Z());
+  };
+}
+}  // namespace
+
+namespace {
+
+CadGeometry read_cad_isolated(const std::string& path, bool want_surface, const std::string& units,
+                              bool prechecks) {
+  if (!std::filesystem::is_regular_file(path))
+    throw Error(Errc::invalid_input, path + ": cannot open file for reading");
+  if (const auto size = std::filesystem::file_size(path); size > kMaxFileBytes)
+    throw Error(Errc::invalid_input, path + ": a file of " + std::to_string(size) +
+                                         " bytes (at most " + std::to_string(kMaxFileBytes) + ")");
+  const std::string ext = lower_extension(path);
+  const bool step = ext == ".step" || ext == ".stp";
+  if (!step && ext != ".igs" && ext != ".iges")
+    throw Error(Errc::invalid_input, path + ": expected a .step, .stp, .igs or .iges file");
+  const UnitNames u = unit_names(units);
+  if (!step && prechecks) check_iges_structure(path);
+  // OpenCASCADE's STEP and IGES parsers crash on some damaged files and keep state from
+  // one file to the next (IGES): they run in a child process, whose death is a refusal.
+  const std::string answer = run_isolated(path, step ? "STEP" : "IGES", [&](std::string& out) {
+    std::vector<Handle(Geom_BSplineSurface)> surfaces;
+    Handle(Geom_BSplineCurve) curve;
+    const CadGeometry g = read_cad_here(path, want_surface, ext, u, prechecks, surfaces, curve);
+    ByteWriter w(out);
+    w.put(static_cast<char>(g.is_surface));
+    w.put(std::array<int, 4>{g.faces, g.edges, g.solids, g.shells});
+    w.put(static_cast<char>(g.valid));
+    w.put(static_cast<char>(g.closed));
+    w.put(g.volume);
+    w.put_string(g.file_units);
+    w.put(g.face_list.size());
+    for (const auto& f : g.face_list) {
+      w.put(static_cast<char>(f.is_plane));
+      if (!f.is_plane) put_nurbs(w, f.surface);
+    }
+    for (const auto& s : surfaces) put_occt(w, s);
+    if (!want_surface) {
+      put_nurbs(w, g.curve);
+      put_occt(w, curve);
+      w.put(g.wire.size());
+      for (const auto& c : g.wire) put_nurbs(w, c);
+    }
+  });
+  CadGeometry g;
+  ByteReader in(answer);
+  try {
+    g.is_surface = in.get<char>() != 0;
+    const auto counts = in.get<std::array<int, 4>>();
+    g.faces = counts[0];
+    g.edges = counts[1];
+    g.solids = counts[2];
+    g.shells = counts[3];
+    g.valid = in.get<char>() != 0;
+    g.closed = in.get<char>() != 0;
+    g.volume = in.get<double>();
+    g.file_units = in.get_string();
+    g.face_list.resize(in.get<std::size_t>());
+    for (auto& f : g.face_list) {
+      f.is_plane = in.get<char>() != 0;
+      if (!f.is_plane) f.surface = get_nurbs_surface(in);
+    }
+    for (auto& f : g.face_list)
+      if (!f.is_plane) f.value = evaluator(get_occt_surface(in));
+    if (g.is_surface) {  // the first face that is not a plane (read_cad_here found one)
+      const auto first = std::find_if(g.face_list.begin(), g.face_list.end(),
+                                      [](const CadFace& f) { return !f.is_plane; });
+      g.surface = first->surface;
+      g.value = first->value;
+    }
+    if (!want_surface) {
+      g.curve = get_nurbs_curve(in);
+      g.value = evaluator(get_occt_curve(in));
+      g.wire.resize(in.get<std::size_t>());
+      for (auto& c : g.wire) c = get_nurbs_curve(in);
+    }
+  } catch (const Standard_Failure& e) {
+    throw Error(Errc::internal, path + ": OpenCASCADE refused the geometry its reader made: " +
+                                    e.GetMessageString());
+  }
+  if (!in.done()) throw Error(Errc::internal, path + ": an isolated reader's answer is garbled");
+  return g;
+}
+
+}  // namespace
+
+CadGeometry read_cad(const std::string& path, bool want_surface, const std::string& units) {
+  return read_cad_isolated(path, want_surface, units, true);
+}
+
+CadGeometry read_cad_unchecked(const std::string& path, bool want_surface,
+                               const std::string& units) {
+  return read_cad_isolated(path, want_surface, units, false);
 }
 
 std::vector<std::array<Eigen::Vector3d, 3>> read_stl(const std::string& path) {

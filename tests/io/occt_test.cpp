@@ -4,6 +4,7 @@
 #include <fstream>
 #include <qmotion/io/json_number.hpp>
 #include <qmotion/io/occt.hpp>
+#include <qmotion/io/occt_unchecked.hpp>
 #include <qmotion/io/profiles.hpp>
 #include <qmotion/sweep/profiles.hpp>
 #include <qmotion/sweep/surface.hpp>
@@ -115,6 +116,43 @@ TEST(OcctMetadata, HeadersNameTheProductAndTheMotion) {
   EXPECT_NE(step.find("E+02"), std::string::npos);  // exponent format of %.17E
   EXPECT_NE(iges.find("demo_motion.json"), std::string::npos);
   EXPECT_NE(iges.find("     128"), std::string::npos);  // IGES entity 128
+}
+
+// Without qmotion's own checks of the file, OpenCASCADE's readers crash on files that
+// crashed earlier builds: each crash stays in the child process that read the file, and
+// comes back as a refusal naming the file. This process reads a good file after each.
+TEST(OcctErrors, AReadersCrashIsARefusalAndTheCallerGoesOn) {
+  const auto good = scratch("after_crash.step");
+  io::write_step(good.string(), sweep::circle(2.0), {});
+  const auto want = io::read_cad(good.string(), false).curve;
+  int crashed = 0;
+  for (const auto& e : fs::directory_iterator(std::string(QMOTION_TEST_DATA) + "/damaged_cad")) {
+    const std::string path = e.path().string();
+    SCOPED_TRACE(path);
+    try {
+      (void)io::read_cad_unchecked(path, false);
+    } catch (const Error& err) {
+      const std::string msg = err.what();
+      EXPECT_EQ(err.code(), Errc::invalid_input) << msg;
+      EXPECT_NE(msg.find(path), std::string::npos) << msg;
+      if (msg.find("OpenCASCADE's reader crashed on it (in a separate process") !=
+          std::string::npos)
+        ++crashed;
+    }
+    // With the checks, every one of them is refused before it reaches the crash.
+    try {
+      (void)io::read_cad(path, false);
+      ADD_FAILURE() << "read";
+    } catch (const Error& err) {
+      EXPECT_EQ(std::string(err.what()).find("crashed"), std::string::npos) << err.what();
+    }
+    const auto got = io::read_cad(good.string(), false).curve;
+    EXPECT_EQ(got.points, want.points);
+    EXPECT_EQ(got.weights, want.weights);
+  }
+  // Debian's OpenCASCADE 7.6 crashes on eleven of the thirteen (measured); a reader that no longer
+  // crashes on some still passes, one that crashes on none leaves nothing tested here.
+  EXPECT_GE(crashed, 1);
 }
 
 TEST(OcctErrors, BadFilesAndGeometryAreRefused) {
