@@ -95,6 +95,12 @@ struct CadGeometry {
 /// edges and the first edge's curve. Curves and surfaces of other types are converted to
 /// NURBS (exactly for lines, conics and B-splines). Throws Errc::invalid_input naming the
 /// file when it cannot be read or holds no such geometry.
+///
+/// OpenCASCADE reads the file in a child process (fork; io/isolated.hpp): its parsers crash
+/// on some damaged files, and the crash becomes Errc::invalid_input ("OpenCASCADE's reader
+/// crashed on it") while this process goes on. CadGeometry::value evaluates, in this
+/// process, the B-spline OpenCASCADE made in the child, rebuilt from its poles and knots.
+/// As with any fork, a multithreaded caller must not hold locks OpenCASCADE needs.
 CadGeometry read_cad(const std::string& path, bool want_surface, const std::string& units = "mm");
 
 /// Full clamped knot vector <-> distinct knots and multiplicities (the OpenCASCADE/STEP/
