@@ -78,6 +78,12 @@ TEST(OcctRoundTrip, SurfacesAndCurvesComeBackBitForBit) {
     EXPECT_EQ(gc.curve.points, c.points);
     EXPECT_EQ(gc.curve.weights, c.weights);
     EXPECT_EQ(gc.curve.knots, c.knots);
+    // value: OpenCASCADE's own B-spline from the child process, rebuilt here.
+    for (const double t : {0.0, 0.1, 0.37, 0.5, 0.81, 1.0}) {
+      const double u = c.knots.front() + t * (c.knots.back() - c.knots.front());
+      EXPECT_LE((gc.value(u, 0) - sweep::evaluate(c, u)).norm(), 1e-12) << u;
+      EXPECT_LE((gs.value(t, 1 - t) - sweep::evaluate(s, t, 1 - t)).norm(), 1e-12) << t;
+    }
   }
 }
 
