@@ -1141,22 +1141,33 @@ std::vector<std::array<Eigen::Vector3d, 3>> read_stl(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
     throw Error(Errc::invalid_input, "--object " + path + ": no such file");
-  quiet_occt();
-  const Handle(Poly_Triangulation) tri = RWStl::ReadFile(path.c_str());
-  if (tri.IsNull() || tri->NbTriangles() == 0)
-    throw Error(Errc::invalid_input, "--object " + path + ": not a readable STL mesh");
-  std::vector<std::array<Eigen::Vector3d, 3>> out;
-  out.reserve(static_cast<std::size_t>(tri->NbTriangles()));
-  for (int i = 1; i <= tri->NbTriangles(); ++i) {
-    int n[3];
-    tri->Triangle(i).Get(n[0], n[1], n[2]);
-    std::array<Eigen::Vector3d, 3> t;
-    for (int k = 0; k < 3; ++k) {
-      const gp_Pnt p = tri->Node(n[k]);
-      t[static_cast<std::size_t>(k)] = Eigen::Vector3d(p.X(), p.Y(), p.Z());
+  // In a child process, as read_cad: OpenCASCADE's parser meets the user's file there.
+  const std::string answer = run_isolated("--object " + path, "STL", [&](std::string& out) {
+    quiet_occt();
+    const Handle(Poly_Triangulation) tri = RWStl::ReadFile(path.c_str());
+    if (tri.IsNull() || tri->NbTriangles() == 0)
+      throw Error(Errc::invalid_input, "--object " + path + ": not a readable STL mesh");
+    std::vector<std::array<double, 9>> triangles;
+    triangles.reserve(static_cast<std::size_t>(tri->NbTriangles()));
+    for (int i = 1; i <= tri->NbTriangles(); ++i) {
+      int n[3];
+      tri->Triangle(i).Get(n[0], n[1], n[2]);
+      std::array<double, 9> t;
+      for (int k = 0; k < 3; ++k) {
+        const gp_Pnt p = tri->Node(n[k]);
+        t[static_cast<std::size_t>(3 * k)] = p.X();
+        t[static_cast<std::size_t>(3 * k + 1)] = p.Y();
+        t[static_cast<std::size_t>(3 * k + 2)] = p.Z();
+      }
+      triangles.push_back(t);
     }
-    out.push_back(t);
-  }
+    ByteWriter(out).put_vector(triangles);
+  });
+  ByteReader in(answer);
+  std::vector<std::array<Eigen::Vector3d, 3>> out;
+  for (const auto& t : in.get_vector<std::array<double, 9>>())
+    out.push_back({Eigen::Vector3d(t[0], t[1], t[2]), Eigen::Vector3d(t[3], t[4], t[5]),
+                   Eigen::Vector3d(t[6], t[7], t[8])});
   return out;
 }
 
