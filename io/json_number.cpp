@@ -60,6 +60,7 @@ class TextPreservingSax : public nlohmann::json_sax<json> {
 
   std::size_t error_pos_ = 0;
   std::string last_token_, error_;
+  bool too_deep_ = false;  ///< stopped at an array or object kMaxJsonDepth levels deep
 
  private:
   bool put(json v) {
@@ -73,6 +74,10 @@ class TextPreservingSax : public nlohmann::json_sax<json> {
     return true;
   }
   bool open(json v) {
+    if (stack_.size() >= kMaxJsonDepth) {
+      too_deep_ = true;
+      return false;
+    }
     if (stack_.empty()) {
       root_ = std::move(v);
       stack_.push_back(&root_);
@@ -125,7 +130,7 @@ bool parse_json_simd(const std::string& text, std::string_view plain_member, jso
     for (auto field : obj) {
       std::string_view key;
       if (field.unescaped_key().get(key)) return false;
-      if (!simd::build(field.value(), root[std::string(key)], key == plain_member)) return false;
+      if (!simd::build(field.value(), root[std::string(key)], key == plain_member, 1)) return false;
     }
   }
   return d.at_end();
@@ -136,6 +141,9 @@ json parse_json_checked(const std::string& text, const std::string& source) {
   json root;
   TextPreservingSax sax(root);
   const bool ok = json::sax_parse(text, &sax, json::input_format_t::json, /*strict=*/true);
+  if (!ok && sax.too_deep_)
+    throw Error(Errc::invalid_input, source + ": arrays and objects nested more than " +
+                                         std::to_string(kMaxJsonDepth) + " levels deep");
   if (!ok) {
     std::string msg = source + ": invalid JSON at " + line_column(text, sax.error_pos_);
     const std::string& tok = sax.last_token_;
@@ -387,11 +395,12 @@ std::string_view trimmed(std::string_view raw) {
 
 /// Reads v whole (simdjson validates what is read, not what is skipped) into *out, or
 /// only validates it when out is null.
-bool walk(sj::value v, json* out, bool plain) {
+bool walk(sj::value v, json* out, bool plain, std::size_t depth = 0) {
   sj::json_type type;
   if (v.type().get(type)) return false;
   switch (type) {
     case sj::json_type::array: {
+      if (depth >= kMaxJsonDepth) return false;  // nlohmann's reader words the refusal
       sj::array arr;
       if (v.get_array().get(arr)) return false;
       if (out) *out = json::array();
@@ -399,18 +408,20 @@ bool walk(sj::value v, json* out, bool plain) {
         sj::value cv;
         if (child.get(cv)) return false;
         if (out) out->push_back(nullptr);
-        if (!walk(cv, out ? &out->back() : nullptr, plain)) return false;
+        if (!walk(cv, out ? &out->back() : nullptr, plain, depth + 1)) return false;
       }
       return true;
     }
     case sj::json_type::object: {
+      if (depth >= kMaxJsonDepth) return false;
       sj::object obj;
       if (v.get_object().get(obj)) return false;
       if (out) *out = json::object();
       for (auto field : obj) {
         std::string_view key;
         if (field.unescaped_key().get(key)) return false;
-        if (!walk(field.value(), out ? &(*out)[std::string(key)] : nullptr, plain)) return false;
+        if (!walk(field.value(), out ? &(*out)[std::string(key)] : nullptr, plain, depth + 1))
+          return false;
       }
       return true;
     }
@@ -460,7 +471,9 @@ bool walk(sj::value v, json* out, bool plain) {
 
 }  // namespace
 
-bool build(sj::value v, json& out, bool plain) { return walk(v, &out, plain); }
+bool build(sj::value v, json& out, bool plain, std::size_t depth) {
+  return walk(v, &out, plain, depth);
+}
 
 bool check(sj::value v) { return walk(v, nullptr, false); }
 

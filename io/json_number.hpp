@@ -113,6 +113,11 @@ nlohmann::json parse_json(const std::string& text, const std::string& source,
 /// file cannot be read.
 nlohmann::json read_json_file(const std::string& path);
 
+/// Deepest nesting of arrays and objects accepted in a JSON file (qmotion's own files nest
+/// five deep at most): bounds the recursion that reads a document, whose stack a file of
+/// nested brackets alone would otherwise exhaust.
+inline constexpr std::size_t kMaxJsonDepth = 100;
+
 /// Largest file read (bounded memory: a 10^5-pose motion file is about 130 MB).
 inline constexpr std::uintmax_t kMaxFileBytes = std::uintmax_t(512) << 20;
 

@@ -38,8 +38,9 @@ struct Document {
 
 /// Builds `out` from v, as parse_json would: float literals as their source text, or as
 /// doubles when `plain`. False on any error (the caller then falls back to nlohmann, which
-/// words the message).
-bool build(sj::value v, nlohmann::json& out, bool plain);
+/// words the message), and for arrays and objects nested more than kMaxJsonDepth levels
+/// deep in the document, v lying `depth` levels deep.
+bool build(sj::value v, nlohmann::json& out, bool plain, std::size_t depth = 0);
 /// Validates v whole without building anything.
 bool check(sj::value v);
 

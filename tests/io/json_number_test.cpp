@@ -178,6 +178,35 @@ TEST(JsonNumber, TheFastParserRefusesWhatTheReferenceRefuses) {
   }
 }
 
+// A file of nested brackets alone once exhausted the stack of the recursive reader (the
+// pose fuzzer's finding, 6372 bytes of "["): nesting is bounded, and deeper is refused.
+TEST(JsonNumber, NestingIsBoundedAndDeeperIsRefusedByName) {
+  auto nested = [](std::size_t depth, const std::string& open, const std::string& close) {
+    std::string t;
+    for (std::size_t i = 0; i < depth; ++i) t += open;
+    t += "1";
+    for (std::size_t i = 0; i < depth; ++i) t += close;
+    return t;
+  };
+  for (const auto& [open, close] :
+       std::vector<std::pair<std::string, std::string>>{{"[", "]"}, {"{\"a\":", "}"}}) {
+    const auto ok = nested(io::kMaxJsonDepth, open, close);
+    EXPECT_EQ(parse_json(ok, "m"), io::parse_json_reference(ok, "m"));
+    for (const std::size_t depth : {io::kMaxJsonDepth + 1, std::size_t(100000)}) {
+      const auto deep = nested(depth, open, close);
+      for (const auto& text : {deep, "{\"poses\": " + deep + "}"}) {
+        EXPECT_TRUE(throws_error([&] { parse_json(text, "deep.json"); }, Errc::invalid_input,
+                                 {"deep.json", "nested more than 100 levels deep"}));
+        EXPECT_TRUE(throws_error([&] { parse_json(text, "deep.json", "poses"); },
+                                 Errc::invalid_input, {"deep.json", "nested more than 100"}));
+      }
+    }
+    // Unclosed, as the fuzzer's file was.
+    EXPECT_TRUE(throws_error([&] { parse_json(std::string(100000, open[0]), "open.json"); },
+                             Errc::invalid_input, {"open.json"}));
+  }
+}
+
 TEST(JsonNumber, FilesAreReadWithRoomToParseInPlace) {
   const auto path = std::filesystem::temp_directory_path() / "qmotion_padding_test.json";
   { std::ofstream(path) << "[1, 2, 3]"; }
