@@ -188,8 +188,9 @@ TEST(JsonNumber, NestingIsBoundedAndDeeperIsRefusedByName) {
     for (std::size_t i = 0; i < depth; ++i) t += close;
     return t;
   };
-  for (const auto& [open, close] :
+  for (const auto& brackets :
        std::vector<std::pair<std::string, std::string>>{{"[", "]"}, {"{\"a\":", "}"}}) {
+    const std::string open = brackets.first, close = brackets.second;
     const auto ok = nested(io::kMaxJsonDepth, open, close);
     EXPECT_EQ(parse_json(ok, "m"), io::parse_json_reference(ok, "m"));
     for (const std::size_t depth : {io::kMaxJsonDepth + 1, std::size_t(100000)}) {
