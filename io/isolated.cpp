@@ -86,8 +86,8 @@ const char* ByteReader::take(std::size_t n) {
 
 std::string run_isolated(const std::string& path, const char* format,
                          const std::function<void(std::string& answer)>& work) {
-  int fds[2];
-  if (::pipe(fds) != 0) {
+  int fds[2];  // close-on-exec: a program another thread of the caller starts keeps no end
+  if (::pipe2(fds, O_CLOEXEC) != 0) {
     std::string answer;
     work(answer);
     return answer;
