@@ -39,6 +39,12 @@ void error(std::string& tag, std::string& body, Errc code, const std::string& me
   w.put_string(message);
 }
 
+std::string in_this_process(const std::function<void(std::string&)>& work) {
+  std::string answer;
+  work(answer);
+  return answer;
+}
+
 [[noreturn]] void child(int fd, const std::string& path,
                         const std::function<void(std::string&)>& work) {
   // A crash ends this process quietly: the default action for the signals (not a
@@ -86,19 +92,14 @@ const char* ByteReader::take(std::size_t n) {
 
 std::string run_isolated(const std::string& path, const char* format,
                          const std::function<void(std::string& answer)>& work) {
+  // Without a pipe or a child (out of processes or memory), the work runs here.
   int fds[2];  // close-on-exec: a program another thread of the caller starts keeps no end
-  if (::pipe2(fds, O_CLOEXEC) != 0) {
-    std::string answer;
-    work(answer);
-    return answer;
-  }
+  if (::pipe2(fds, O_CLOEXEC) != 0) return in_this_process(work);
   const pid_t pid = ::fork();
   if (pid < 0) {
     ::close(fds[0]);
     ::close(fds[1]);
-    std::string answer;
-    work(answer);
-    return answer;
+    return in_this_process(work);
   }
   if (pid == 0) {
     ::close(fds[0]);

@@ -773,8 +773,9 @@ void refuse_failed_load(XSControl_Reader& reader, const std::string& path, const
   }
 }
 
-/// read_cad's work, run in the child process: everything but CadGeometry::value, whose
-/// OpenCASCADE B-splines go to `surfaces` (one per face that is not a plane) and `curve`.
+/// read_cad's work, run in the child process: the counts, flags and units, which faces are
+/// planes, and the profile's wire; the B-splines OpenCASCADE made go to `surfaces` (one per
+/// face that is not a plane) and `curve_out`, for the calling process to convert.
 CadGeometry read_cad_here(const std::string& path, bool want_surface, const std::string& ext,
                           const UnitNames& u, bool prechecks,
                           std::vector<Handle(Geom_BSplineSurface)>& surfaces,
@@ -845,16 +846,12 @@ CadGeometry read_cad_here(const std::string& path, bool want_surface, const std:
         }
         Handle(Geom_BSplineSurface) bs = Handle(Geom_BSplineSurface)::DownCast(surf);
         if (bs.IsNull()) bs = GeomConvert::SurfaceToBSplineSurface(surf);
-        face.surface = from_occt(bs);
         surfaces.push_back(bs);
         g.face_list.push_back(std::move(face));
       }
-      const auto first = std::find_if(g.face_list.begin(), g.face_list.end(),
-                                      [](const CadFace& f) { return !f.is_plane; });
-      if (first == g.face_list.end())
+      if (surfaces.empty())
         throw Error(Errc::invalid_input, path + ": the file holds no surface (face)");
       g.is_surface = true;
-      g.surface = first->surface;
     } else {
       TopExp_Explorer e(shape, TopAbs_EDGE);
       if (!e.More()) throw Error(Errc::invalid_input, path + ": the file holds no curve (edge)");
@@ -870,11 +867,8 @@ CadGeometry read_cad_here(const std::string& path, bool want_surface, const std:
         first = std::min(first, f2);
         last = std::max(last, l2);
       }
-      Handle(Geom_BSplineCurve) bc = whole_curve(curve, first, last);
-      g.curve = from_occt(bc);
-      curve_out = bc;
-      g.wire = profile_edges(shape);
-      if (g.wire.empty()) g.wire.push_back(g.curve);
+      curve_out = whole_curve(curve, first, last);
+      g.wire = profile_edges(shape);  // empty: the calling process takes the curve
     }
   } catch (const Standard_Failure& e) {
     throw Error(Errc::invalid_input,
@@ -901,39 +895,9 @@ sweep::NurbsCurve<double> get_nurbs_curve(ByteReader& r) {
   return c;
 }
 
-void put_nurbs(ByteWriter& w, const sweep::NurbsSurface<double>& s) {
-  w.put(s.degree_u);
-  w.put(s.degree_v);
-  w.put_vector(s.knots_u);
-  w.put_vector(s.knots_v);
-  w.put(s.points.size());
-  for (std::size_t i = 0; i < s.points.size(); ++i) {
-    std::vector<std::array<double, 3>> row;
-    for (const auto& p : s.points[i]) row.push_back({p.x(), p.y(), p.z()});
-    w.put_vector(row);
-    w.put_vector(s.weights[i]);
-  }
-}
-
-sweep::NurbsSurface<double> get_nurbs_surface(ByteReader& r) {
-  sweep::NurbsSurface<double> s;
-  s.degree_u = r.get<int>();
-  s.degree_v = r.get<int>();
-  s.knots_u = r.get_vector<double>();
-  s.knots_v = r.get_vector<double>();
-  const auto rows = r.get<std::size_t>();
-  for (std::size_t i = 0; i < rows; ++i) {
-    s.points.emplace_back();
-    for (const auto& p : r.get_vector<std::array<double, 3>>())
-      s.points.back().emplace_back(p[0], p[1], p[2]);
-    s.weights.push_back(r.get_vector<double>());
-  }
-  return s;
-}
-
 // OpenCASCADE's own B-splines as the child read them (periodic or not, unclamped or not),
-// rebuilt in this process for CadGeometry::value: its evaluation stays OpenCASCADE's of
-// the file's object, independent of from_occt's conversion to our clamped NURBS.
+// rebuilt in this process: from_occt converts them to our clamped NURBS here, and
+// CadGeometry::value stays OpenCASCADE's evaluation of the file's object.
 template <typename Array>
 std::vector<double> reals(const Array& a) {
   return std::vector<double>(a.begin(), a.end());
@@ -942,6 +906,18 @@ std::vector<double> reals(const Array& a) {
 template <typename Array>
 std::vector<int> ints(const Array& a) {
   return std::vector<int>(a.begin(), a.end());
+}
+
+TColStd_Array1OfReal occt_reals(const std::vector<double>& v) {
+  TColStd_Array1OfReal a(1, static_cast<int>(v.size()));
+  for (std::size_t i = 0; i < v.size(); ++i) a.SetValue(static_cast<int>(i) + 1, v[i]);
+  return a;
+}
+
+TColStd_Array1OfInteger occt_ints(const std::vector<int>& v) {
+  TColStd_Array1OfInteger a(1, static_cast<int>(v.size()));
+  for (std::size_t i = 0; i < v.size(); ++i) a.SetValue(static_cast<int>(i) + 1, v[i]);
+  return a;
 }
 
 void put_occt(ByteWriter& w, const Handle(Geom_BSplineCurve) & c) {
@@ -963,18 +939,14 @@ Handle(Geom_BSplineCurve) get_occt_curve(ByteReader& r) {
   const auto k = r.get_vector<double>();
   const auto m = r.get_vector<int>();
   const auto poles = r.get_vector<std::array<double, 4>>();
-  TColStd_Array1OfReal knots(1, static_cast<int>(k.size())),
-      weights(1, static_cast<int>(poles.size()));
-  TColStd_Array1OfInteger mults(1, static_cast<int>(m.size()));
+  TColStd_Array1OfReal weights(1, static_cast<int>(poles.size()));
   TColgp_Array1OfPnt points(1, static_cast<int>(poles.size()));
-  for (std::size_t i = 0; i < k.size(); ++i) knots.SetValue(static_cast<int>(i) + 1, k[i]);
-  for (std::size_t i = 0; i < m.size(); ++i) mults.SetValue(static_cast<int>(i) + 1, m[i]);
   for (std::size_t i = 0; i < poles.size(); ++i) {
     const auto& p = poles[i];
     points.SetValue(static_cast<int>(i) + 1, gp_Pnt(p[0], p[1], p[2]));
     weights.SetValue(static_cast<int>(i) + 1, p[3]);
   }
-  return new Geom_BSplineCurve(points, weights, knots, mults, degree, periodic);
+  return new Geom_BSplineCurve(points, weights, occt_reals(k), occt_ints(m), degree, periodic);
 }
 
 void put_occt(ByteWriter& w, const Handle(Geom_BSplineSurface) & s) {
@@ -1008,16 +980,6 @@ Handle(Geom_BSplineSurface) get_occt_surface(ByteReader& r) {
   if (nv < 1 || poles.size() % static_cast<std::size_t>(nv) != 0)
     throw Error(Errc::internal, "an isolated reader's surface is garbled");
   const int nu = static_cast<int>(poles.size() / static_cast<std::size_t>(nv));
-  auto array = [](const std::vector<double>& v) {
-    TColStd_Array1OfReal a(1, static_cast<int>(v.size()));
-    for (std::size_t i = 0; i < v.size(); ++i) a.SetValue(static_cast<int>(i) + 1, v[i]);
-    return a;
-  };
-  auto iarray = [](const std::vector<int>& v) {
-    TColStd_Array1OfInteger a(1, static_cast<int>(v.size()));
-    for (std::size_t i = 0; i < v.size(); ++i) a.SetValue(static_cast<int>(i) + 1, v[i]);
-    return a;
-  };
   TColgp_Array2OfPnt points(1, nu, 1, nv);
   TColStd_Array2OfReal weights(1, nu, 1, nv);
   for (int i = 0; i < nu; ++i)
@@ -1026,8 +988,8 @@ Handle(Geom_BSplineSurface) get_occt_surface(ByteReader& r) {
       points.SetValue(i + 1, j + 1, gp_Pnt(p[0], p[1], p[2]));
       weights.SetValue(i + 1, j + 1, p[3]);
     }
-  return new Geom_BSplineSurface(points, weights, array(uk), array(vk), iarray(um), iarray(vm), du,
-                                 dv, pu, pv);
+  return new Geom_BSplineSurface(points, weights, occt_reals(uk), occt_reals(vk), occt_ints(um),
+                                 occt_ints(vm), du, dv, pu, pv);
 }
 
 std::function<Eigen::Vector3d(double, double)> evaluator(Handle(Geom_BSplineSurface) s) {
@@ -1043,9 +1005,6 @@ std::function<Eigen::Vector3d(double, double)> evaluator(Handle(Geom_BSplineCurv
     return Eigen::Vector3d(p.X(), p.Y(), p.Z());
   };
 }
-}  // namespace
-
-namespace {
 
 CadGeometry read_cad_isolated(const std::string& path, bool want_surface, const std::string& units,
                               bool prechecks) {
@@ -1074,13 +1033,9 @@ CadGeometry read_cad_isolated(const std::string& path, bool want_surface, const 
     w.put(g.volume);
     w.put_string(g.file_units);
     w.put(g.face_list.size());
-    for (const auto& f : g.face_list) {
-      w.put(static_cast<char>(f.is_plane));
-      if (!f.is_plane) put_nurbs(w, f.surface);
-    }
+    for (const auto& f : g.face_list) w.put(static_cast<char>(f.is_plane));
     for (const auto& s : surfaces) put_occt(w, s);
     if (!want_surface) {
-      put_nurbs(w, g.curve);
       put_occt(w, curve);
       w.put(g.wire.size());
       for (const auto& c : g.wire) put_nurbs(w, c);
@@ -1100,27 +1055,27 @@ CadGeometry read_cad_isolated(const std::string& path, bool want_surface, const 
     g.volume = in.get<double>();
     g.file_units = in.get_string();
     g.face_list.resize(in.get<std::size_t>());
+    for (auto& f : g.face_list) f.is_plane = in.get<char>() != 0;
     for (auto& f : g.face_list) {
-      f.is_plane = in.get<char>() != 0;
-      if (!f.is_plane) f.surface = get_nurbs_surface(in);
-    }
-    for (auto& f : g.face_list)
-      if (!f.is_plane) f.value = evaluator(get_occt_surface(in));
-    if (g.is_surface) {  // the first face that is not a plane (read_cad_here found one)
-      const auto first = std::find_if(g.face_list.begin(), g.face_list.end(),
-                                      [](const CadFace& f) { return !f.is_plane; });
-      g.surface = first->surface;
-      g.value = first->value;
+      if (f.is_plane) continue;
+      const auto bs = get_occt_surface(in);
+      f.surface = from_occt(bs);
+      f.value = evaluator(bs);
+      if (g.value) continue;
+      g.surface = f.surface;  // the first face that is not a plane
+      g.value = f.value;
     }
     if (!want_surface) {
-      g.curve = get_nurbs_curve(in);
-      g.value = evaluator(get_occt_curve(in));
+      const auto bc = get_occt_curve(in);
+      g.curve = from_occt(bc);
+      g.value = evaluator(bc);
       g.wire.resize(in.get<std::size_t>());
       for (auto& c : g.wire) c = get_nurbs_curve(in);
+      if (g.wire.empty()) g.wire.push_back(g.curve);
     }
-  } catch (const Standard_Failure& e) {
-    throw Error(Errc::internal, path + ": OpenCASCADE refused the geometry its reader made: " +
-                                    e.GetMessageString());
+  } catch (const Standard_Failure& e) {  // as in the child: from_occt's conversion
+    throw Error(Errc::invalid_input,
+                path + ": OpenCASCADE could not read it: " + e.GetMessageString());
   }
   if (!in.done()) throw Error(Errc::internal, path + ": an isolated reader's answer is garbled");
   return g;
