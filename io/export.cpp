@@ -222,9 +222,9 @@ sweep::NurbsSurface<double> edge_surface(const kernel::Motion<double>& lm,
       return s;
     }
   }
-  const auto hs = sweep::kinematic_surface(lm, profile);
-  check_degree(hs.degree_u, "the surface (along the motion)", f, opt);
-  return sweep::to_nurbs(hs);
+  auto s = sweep::kinematic_nurbs(lm, profile);
+  check_degree(s.degree_u, "the surface (along the motion)", f, opt);
+  return s;
 }
 
 int count_poles(const std::vector<sweep::NurbsSurface<double>>& faces) {

@@ -39,6 +39,9 @@ class Bernstein {
 
   int degree() const { return static_cast<int>(c_.size()) - 1; }
   const std::vector<Coef>& coeffs() const { return c_; }
+  /// The coefficients moved out (the polynomial is left empty and must not be used): a
+  /// caller that makes one piece after another reuses their storage.
+  std::vector<Coef> take_coeffs() && { return std::move(c_); }
   const Coef& operator[](int i) const { return c_[static_cast<std::size_t>(i)]; }
   const Scalar& a() const { return a_; }
   const Scalar& b() const { return b_; }

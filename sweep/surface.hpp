@@ -40,6 +40,79 @@ std::vector<kernel::BSpline<Vec4<Scalar>>> trajectories(const Motion<Scalar>& mo
   return cols;
 }
 
+namespace detail {
+
+/// The homogeneous poles of the kinematic surface y(t, v) = M(t) x(v) (see
+/// kinematic_surface), handed to out(degree_u, knots_u, rows, pole) with pole(i, j) the pole
+/// of row i (along u) and column j (the profile's pole j); returns what out returns.
+template <typename Scalar, typename Out>
+auto kinematic_poles(const Motion<Scalar>& m, const NurbsCurve<Scalar>& profile, Out&& out) {
+  std::vector<Vec4<Scalar>> X;
+  X.reserve(profile.points.size());
+  for (std::size_t j = 0; j < profile.points.size(); ++j) {
+    Vec4<Scalar> x;
+    x << profile.weights[j], profile.points[j] * profile.weights[j];
+    X.push_back(x);
+  }
+  if (m.factors && X.size() >= 4) {
+    auto M = matrix_from_factors(*m.factors);
+    // Every column's weight function is w_j |Q_rot|^2, M's first row: one refinement
+    // serves all, found on the trajectory of (1, 0, 0, 0).
+    Vec4<Scalar> e0 = Vec4<Scalar>::Zero();
+    e0(0) = Scalar(1);
+    const auto extra = knots_for_positive_weights(apply(M, e0));  // before M is moved from
+    M = insert_knots(std::move(M), extra);
+    std::vector<Vec4<Scalar>> P;  // row by row, each product made once
+    P.reserve(M.ctrl().size() * X.size());
+    for (const auto& Mi : M.ctrl())
+      for (const auto& x : X) P.push_back(Vec4<Scalar>(Mi * x));
+    return out(
+        M.degree(), M.knots(), M.ctrl().size(),
+        [&](std::size_t i, std::size_t j) -> const Vec4<Scalar>& { return P[i * X.size() + j]; });
+  }
+  auto cols = trajectories(m, X);
+  // Every column's weight function is w_j times the motion's: one refinement serves all.
+  const auto extra = knots_for_positive_weights(cols.front());
+  for (auto& c : cols) c = insert_knots(std::move(c), extra);
+  return out(
+      cols.front().degree(), cols.front().knots(), cols.front().ctrl().size(),
+      [&](std::size_t i, std::size_t j) -> const Vec4<Scalar>& { return cols[j].ctrl()[i]; });
+}
+
+/// The NURBS surface of the homogeneous poles pole(i, j) (rows x cols), weights scaled so
+/// that the largest is 1. Throws Errc::numerical_failure at a weight that is not positive.
+template <typename Scalar, typename Pole>
+NurbsSurface<Scalar> nurbs_from_poles(int degree_u, int degree_v, std::vector<Scalar> knots_u,
+                                      std::vector<Scalar> knots_v, std::size_t rows,
+                                      std::size_t cols, Pole&& pole) {
+  Scalar wmax(0);
+  for (std::size_t i = 0; i < rows; ++i)
+    for (std::size_t j = 0; j < cols; ++j) wmax = std::max(wmax, Scalar(pole(i, j)(0)));
+  NurbsSurface<Scalar> s;
+  s.degree_u = degree_u;
+  s.degree_v = degree_v;
+  s.knots_u = std::move(knots_u);
+  s.knots_v = std::move(knots_v);
+  s.points.reserve(rows);
+  s.weights.reserve(rows);
+  for (std::size_t i = 0; i < rows; ++i) {
+    auto& points = s.points.emplace_back();
+    auto& weights = s.weights.emplace_back();
+    points.reserve(cols);  // one allocation a row, not one a doubling
+    weights.reserve(cols);
+    for (std::size_t j = 0; j < cols; ++j) {
+      const auto& p = pole(i, j);
+      if (!(p(0) > Scalar(0)))
+        throw Error(Errc::numerical_failure, "a surface weight is not positive");
+      points.push_back((p.template tail<3>() / p(0)).eval());
+      weights.push_back(Scalar(p(0) / wmax));
+    }
+  }
+  return s;
+}
+
+}  // namespace detail
+
 /// The kinematic surface y(t, v) = M(t) x(v) of a rational profile (SPEC §2.7): its
 /// homogeneous poles are the u-poles of the trajectories of the profile's homogeneous
 /// poles X_j = (w_j, w_j x_j), since M(t) acts linearly. Exact, no fitting; u is t. Knots
@@ -52,44 +125,34 @@ std::vector<kernel::BSpline<Vec4<Scalar>>> trajectories(const Motion<Scalar>& mo
 template <typename Scalar>
 HomogeneousSurface<Scalar> kinematic_surface(const Motion<Scalar>& m,
                                              const NurbsCurve<Scalar>& profile) {
-  std::vector<Vec4<Scalar>> X;
-  X.reserve(profile.points.size());
-  for (std::size_t j = 0; j < profile.points.size(); ++j) {
-    Vec4<Scalar> x;
-    x << profile.weights[j], profile.points[j] * profile.weights[j];
-    X.push_back(x);
-  }
-  HomogeneousSurface<Scalar> s;
-  s.degree_v = profile.degree;
-  s.knots_v = profile.knots;
-  if (m.factors && X.size() >= 4) {
-    auto M = matrix_from_factors(*m.factors);
-    // Every column's weight function is w_j |Q_rot|^2, M's first row: one refinement
-    // serves all, found on the trajectory of (1, 0, 0, 0).
-    Vec4<Scalar> e0 = Vec4<Scalar>::Zero();
-    e0(0) = Scalar(1);
-    const auto extra = knots_for_positive_weights(apply(M, e0));  // before M is moved from
-    M = insert_knots(std::move(M), extra);
-    s.degree_u = M.degree();
-    s.knots_u = M.knots();
-    s.poles.reserve(M.ctrl().size());
-    for (const auto& Mi : M.ctrl()) {
-      auto& row = s.poles.emplace_back();
-      row.reserve(X.size());
-      for (const auto& x : X) row.push_back(Vec4<Scalar>(Mi * x));
-    }
-    return s;
-  }
-  auto cols = trajectories(m, X);
-  // Every column's weight function is w_j times the motion's: one refinement serves all.
-  const auto extra = knots_for_positive_weights(cols.front());
-  for (auto& c : cols) c = insert_knots(std::move(c), extra);
-  s.degree_u = cols.front().degree();
-  s.knots_u = cols.front().knots();
-  s.poles.assign(cols.front().ctrl().size(), std::vector<Vec4<Scalar>>(cols.size()));
-  for (std::size_t j = 0; j < cols.size(); ++j)
-    for (std::size_t i = 0; i < cols[j].ctrl().size(); ++i) s.poles[i][j] = cols[j].ctrl()[i];
-  return s;
+  return detail::kinematic_poles(
+      m, profile,
+      [&](int degree_u, const std::vector<Scalar>& knots_u, std::size_t rows, auto&& pole) {
+        HomogeneousSurface<Scalar> s;
+        s.degree_u = degree_u;
+        s.degree_v = profile.degree;
+        s.knots_u = knots_u;
+        s.knots_v = profile.knots;
+        s.poles.resize(rows);
+        for (std::size_t i = 0; i < rows; ++i) {
+          s.poles[i].reserve(profile.points.size());
+          for (std::size_t j = 0; j < profile.points.size(); ++j) s.poles[i].push_back(pole(i, j));
+        }
+        return s;
+      });
+}
+
+/// to_nurbs(kinematic_surface(m, profile)) without the homogeneous rows in between: the
+/// same surface bit for bit, with one allocation a row fewer (what `sweep` and the library's
+/// sweeps build).
+template <typename Scalar>
+NurbsSurface<Scalar> kinematic_nurbs(const Motion<Scalar>& m, const NurbsCurve<Scalar>& profile) {
+  return detail::kinematic_poles(
+      m, profile,
+      [&](int degree_u, const std::vector<Scalar>& knots_u, std::size_t rows, auto&& pole) {
+        return detail::nurbs_from_poles(degree_u, profile.degree, knots_u, profile.knots, rows,
+                                        profile.points.size(), pole);
+      });
 }
 
 /// The trajectory of the Cartesian point x as a homogeneous spline with positive weights,
@@ -106,29 +169,10 @@ kernel::BSpline<Vec4<Scalar>> trajectory(const Motion<Scalar>& m,
 /// Weights scaled so that the largest is 1 (the homogeneous scale is free).
 template <typename Scalar>
 NurbsSurface<Scalar> to_nurbs(const HomogeneousSurface<Scalar>& h) {
-  Scalar wmax(0);
-  for (const auto& row : h.poles)
-    for (const auto& p : row) wmax = std::max(wmax, p(0));
-  NurbsSurface<Scalar> s;
-  s.degree_u = h.degree_u;
-  s.degree_v = h.degree_v;
-  s.knots_u = h.knots_u;
-  s.knots_v = h.knots_v;
-  s.points.reserve(h.poles.size());
-  s.weights.reserve(h.poles.size());
-  for (const auto& row : h.poles) {
-    auto& points = s.points.emplace_back();
-    auto& weights = s.weights.emplace_back();
-    points.reserve(row.size());  // one allocation a row, not one a doubling
-    weights.reserve(row.size());
-    for (const auto& p : row) {
-      if (!(p(0) > Scalar(0)))
-        throw Error(Errc::numerical_failure, "a surface weight is not positive");
-      points.push_back((p.template tail<3>() / p(0)).eval());
-      weights.push_back(Scalar(p(0) / wmax));
-    }
-  }
-  return s;
+  return detail::nurbs_from_poles(
+      h.degree_u, h.degree_v, h.knots_u, h.knots_v, h.poles.size(),
+      h.poles.empty() ? std::size_t(0) : h.poles.front().size(),
+      [&](std::size_t i, std::size_t j) -> const Vec4<Scalar>& { return h.poles[i][j]; });
 }
 
 /// Point of a NURBS surface at (u, v): the (p + 1) x (q + 1) homogeneous poles of the spans
@@ -168,7 +212,7 @@ NurbsCurve<Scalar> trajectory_curve(const Motion<Scalar>& m, const Eigen::Matrix
 template <typename Scalar>
 std::vector<NurbsSurface<Scalar>> sweep(const Motion<Scalar>& m, const Profile<Scalar>& profile) {
   std::vector<NurbsSurface<Scalar>> out;
-  for (const auto& e : profile.edges) out.push_back(to_nurbs(kinematic_surface(m, e)));
+  for (const auto& e : profile.edges) out.push_back(kinematic_nurbs(m, e));
   return out;
 }
 

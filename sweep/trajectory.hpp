@@ -110,12 +110,17 @@ std::pair<int, std::vector<Scalar>> matrix_pieces(const MotionFactors<Scalar>& f
       pair_weight.push_back(
           Scalar(kernel::binomial<Scalar>(kr, i) * kernel::binomial<Scalar>(kr, j) /
                  kernel::binomial<Scalar>(k2, i + j) * Scalar(i == j ? 1 : 2)));
+  // Every span's piece is made in buffers reused from span to span (no allocation in the
+  // loop for TR and minimal order: a few hundred spans of a B-spline motion spent a third of
+  // their time in malloc and free), by the very operations kernel::product and
+  // kernel::elevate perform, in their order: the pieces are theirs bit for bit.
   std::vector<M3> u_of;
+  std::vector<M4> nu;  // |Q_rot|^2 and U of the span, degree 2k
   const auto square = [&](const Bernstein<Q>& r) {
     const auto& q = r.coeffs();
     u_of.clear();
     for (const Q& qi : q) u_of.push_back(kernel::rotation_matrix_unnormalized(qi));
-    std::vector<M4> c(static_cast<std::size_t>(k2 + 1), M4::Zero());
+    nu.assign(static_cast<std::size_t>(k2 + 1), M4::Zero());
     std::size_t w = 0;
     for (std::size_t i = 0; i < q.size(); ++i)
       for (std::size_t j = i; j < q.size(); ++j, ++w) {
@@ -128,39 +133,68 @@ std::pair<int, std::vector<Scalar>> matrix_pieces(const MotionFactors<Scalar>& f
               ((kernel::rotation_matrix_unnormalized(Q(q[i] + q[j])) - u_of[i] - u_of[j]) /
                Scalar(2))
                   .eval();
-        c[i + j] += kernel::scale(pair_weight[w], m);
+        nu[i + j] += kernel::scale(pair_weight[w], m);
       }
-    return Bernstein<M4>(std::move(c), r.a(), r.b());
+  };
+  // Degree elevation by r in place, step by step as kernel::elevate: the new coefficient i
+  // mixes the old i and i - 1, so going down leaves every old one read before it is
+  // overwritten.
+  const auto elevate_in_place = [](auto& c, int r) {
+    for (int step = 0; step < r; ++step) {
+      const int n1 = static_cast<int>(c.size());  // new degree
+      c.push_back(c.back());
+      for (int i = n1 - 1; i >= 1; --i) {
+        const Scalar w = Scalar(Scalar(i) / Scalar(n1));
+        c[static_cast<std::size_t>(i)] = kernel::detail::lerp(
+            c[static_cast<std::size_t>(i)], c[static_cast<std::size_t>(i - 1)], w);
+      }
+    }
   };
   // Degree: 2k for |Q_rot|^2 and U; the translation column 2k + l (TR), 2k + max(l1, l2)
   // (TRT), l (minimal order).
-  int d = std::max(
-      k2, f.translation.degree() + (method == kernel::TranslationMethod::minimal ? 0 : k2));
+  const int l1 = f.translation.degree();
+  int d = std::max(k2, l1 + (method == kernel::TranslationMethod::minimal ? 0 : k2));
   if (method == kernel::TranslationMethod::trt) d = std::max(d, k2 + f.translation2->degree());
+  // The weights of kernel::product's formula (29) for |Q_rot|^2 (degree 2k) times p (l1).
+  std::vector<Scalar> product_weight;
+  for (int i = 0; i <= k2; ++i)
+    for (int j = 0; j <= l1; ++j)
+      product_weight.push_back(
+          Scalar(kernel::binomial<Scalar>(k2, i) * kernel::binomial<Scalar>(l1, j) /
+                 kernel::binomial<Scalar>(k2 + l1, i + j)));
+  std::vector<V3> a;  // column 0 below the weight
+  std::vector<M4> c;  // the piece's coefficients, handed to visit and taken back
   for (std::size_t k = 0; k < rot.size(); ++k) {
-    const Bernstein<M4> nu = square(rot[k]);
+    square(rot[k]);
     // Column 0 below the weight: a = |Q_rot|^2 p (TR), |Q_rot|^2 p1 + U p2 (TRT), w (minimal).
-    Bernstein<V3> a = tr1[k];
-    if (method != kernel::TranslationMethod::minimal) {
-      std::vector<Scalar> n2;
-      n2.reserve(nu.coeffs().size());
-      for (const auto& m : nu.coeffs()) n2.push_back(m(0, 0));
-      a = kernel::product(Bernstein<Scalar>(std::move(n2), nu.a(), nu.b()), tr1[k]);
+    const auto& p = tr1[k].coeffs();
+    if (method == kernel::TranslationMethod::minimal) {
+      a.assign(p.begin(), p.end());
+    } else {
+      a.assign(static_cast<std::size_t>(k2 + l1 + 1), V3::Zero());
+      std::size_t w = 0;
+      for (int i = 0; i <= k2; ++i)
+        for (int j = 0; j <= l1; ++j, ++w)
+          a[static_cast<std::size_t>(i + j)] += kernel::scale(
+              product_weight[w], V3(kernel::RingMul{}(nu[static_cast<std::size_t>(i)](0, 0),
+                                                      p[static_cast<std::size_t>(j)])));
     }
-    a = kernel::elevate(a, d - a.degree());
+    elevate_in_place(a, d - (static_cast<int>(a.size()) - 1));
     if (method == kernel::TranslationMethod::trt) {
       std::vector<M3> u;
-      for (const auto& m : nu.coeffs()) u.push_back(m.template block<3, 3>(1, 1));
-      auto b = kernel::product(Bernstein<M3>(std::move(u), nu.a(), nu.b()), tr2[k], times);
+      for (const auto& m : nu) u.push_back(m.template block<3, 3>(1, 1));
+      auto b = kernel::product(Bernstein<M3>(std::move(u), rot[k].a(), rot[k].b()), tr2[k], times);
       b = kernel::elevate(b, d - b.degree());
-      std::vector<V3> c;
-      for (int i = 0; i <= d; ++i) c.push_back(V3(a[i] + b[i]));
-      a = Bernstein<V3>(std::move(c), a.a(), a.b());
+      for (int i = 0; i <= d; ++i)
+        a[static_cast<std::size_t>(i)] = V3(a[static_cast<std::size_t>(i)] + b[i]);
     }
-    const auto m = kernel::elevate(nu, d - nu.degree());
-    std::vector<M4> c = m.coeffs();
-    for (int i = 0; i <= d; ++i) c[static_cast<std::size_t>(i)].template block<3, 1>(1, 0) = a[i];
-    visit(Bernstein<M4>(std::move(c), m.a(), m.b()));
+    c.assign(nu.begin(), nu.end());
+    elevate_in_place(c, d - k2);
+    for (int i = 0; i <= d; ++i)
+      c[static_cast<std::size_t>(i)].template block<3, 1>(1, 0) = a[static_cast<std::size_t>(i)];
+    Bernstein<M4> piece(std::move(c), rot[k].a(), rot[k].b());
+    visit(piece);
+    c = std::move(piece).take_coeffs();
   }
   // At a breakpoint the matrix is as smooth as the least smooth factor there.
   std::vector<Scalar> knots(static_cast<std::size_t>(d + 1), x.front());

@@ -1,6 +1,6 @@
 // tests/bench/occt_peers.cpp: qmotion's exact kinematic sweep side by side with the
 // routes an OpenCASCADE user has to the same surface (issue 13, item 6):
-//   1. qmotion: the exact rational surface (sweep::kinematic_surface), written by io::write_step;
+//   1. qmotion: the exact rational surface (sweep::kinematic_nurbs), written by io::write_step;
 //   2. GeomFill_Sweep with a location law that evaluates our motion exactly (value and
 //      first and second derivatives of the rational frame), at several Tol3d and MaxDegree;
 //   3. BRepOffsetAPI_MakePipeShell along the origin's exact trajectory, in the default mode
@@ -161,7 +161,7 @@ struct Case {
         motion(std::move(m)),
         profile(std::move(c)),
         frames(std::make_shared<Frames>(motion)),
-        exact(sweep::to_nurbs(sweep::kinematic_surface(motion, profile))) {
+        exact(sweep::kinematic_nurbs(motion, profile)) {
     V3 lo = V3::Constant(HUGE_VAL), hi = -lo;
     for (int i = 0; i <= 400; ++i)
       for (int j = 0; j <= 20; ++j) {
@@ -635,8 +635,7 @@ struct WriteTimes {  // route 1's export against OpenCASCADE's writers alone, sa
 Row exact_route(const Case& c, int repeats, WriteTimes& wt) {
   return table_row(c, "1 qmotion exact", "—", [&](Row& r) {
     sweep::NurbsSurface<double> s;
-    r.build_ms = median_ms(
-        repeats, [&] { s = sweep::to_nurbs(sweep::kinematic_surface(c.motion, c.profile)); });
+    r.build_ms = median_ms(repeats, [&] { s = sweep::kinematic_nurbs(c.motion, c.profile); });
     r.poles = static_cast<long>(s.points.size() * s.points.front().size());
     r.degrees = std::to_string(s.degree_u) + "×" + std::to_string(s.degree_v);
     const std::string path = temp_step("exact");

@@ -56,7 +56,7 @@ void BM_SurfaceOf1000PoseMotion(benchmark::State& st) {  // circle profile: 9 po
   const auto P = poses(1000, t);
   const auto r = kernel::interpolate_bspline(P, t, kernel::SplineOptions{});
   const auto prof = sweep::circle(5.0);
-  for (auto _ : st) benchmark::DoNotOptimize(sweep::to_nurbs(sweep::kinematic_surface(r, prof)));
+  for (auto _ : st) benchmark::DoNotOptimize(sweep::kinematic_nurbs(r, prof));
 }
 BENCHMARK(BM_SurfaceOf1000PoseMotion)->Unit(benchmark::kMillisecond);
 

@@ -71,8 +71,7 @@ void BM_Degree16x2SurfaceBuildOnly(benchmark::State& st) {
   const std::string path = motion_file(test_data("poses/helix_40.json"), 9,
                                        kernel::TranslationMethod::minimal, "bench_16b.json");
   const auto m = io::load_motion(path);
-  for (auto _ : st)
-    benchmark::DoNotOptimize(sweep::to_nurbs(sweep::kinematic_surface(m, kParabola)));
+  for (auto _ : st) benchmark::DoNotOptimize(sweep::kinematic_nurbs(m, kParabola));
 }
 BENCHMARK(BM_Degree16x2SurfaceBuildOnly)->Unit(benchmark::kMicrosecond);
 

@@ -357,6 +357,55 @@ TEST(PositiveWeights, AMotionWithAPoleCannotBeMadePositive) {
                            Errc::numerical_failure, {"pole"}));
 }
 
+TEST(KinematicSurface, KinematicNurbsIsTheHomogeneousSurfacesNurbsBitForBit) {
+  // kinematic_nurbs (what sweeps build) skips the homogeneous rows: the same surface, every
+  // double the same, through the columns (two or three profile poles), through M (four or
+  // more), and from a motion without factors; a surface with negative Bernstein weights
+  // refined away; and in rational arithmetic.
+  const auto same = [](const auto& a, const auto& b) {
+    EXPECT_EQ(a.degree_u, b.degree_u);
+    EXPECT_EQ(a.degree_v, b.degree_v);
+    EXPECT_TRUE(a.knots_u == b.knots_u);
+    EXPECT_TRUE(a.knots_v == b.knots_v);
+    EXPECT_TRUE(a.weights == b.weights);
+    ASSERT_EQ(a.points.size(), b.points.size());
+    for (std::size_t i = 0; i < a.points.size(); ++i) {
+      ASSERT_EQ(a.points[i].size(), b.points[i].size());
+      for (std::size_t j = 0; j < a.points[i].size(); ++j)
+        ASSERT_TRUE(a.points[i][j] == b.points[i][j]) << "pole " << i << ", " << j;
+    }
+  };
+  const auto P = io::to_poses_double(io::read_poses(test_data("poses/five_positions.json")));
+  for (auto rot : kRot)
+    for (auto tr : kTr) {
+      const Built b = build(P, rot, tr);
+      for (const auto& [name, prof] : profiles()) {
+        SCOPED_TRACE(std::string(kernel::to_string(rot)) + "+" + kernel::to_string(tr) + " " +
+                     name);
+        same(sweep::kinematic_nurbs(b.r, prof),
+             sweep::to_nurbs(sweep::kinematic_surface(b.r, prof)));
+        same(sweep::kinematic_nurbs(bare(b.r.curve), prof),
+             sweep::to_nurbs(sweep::kinematic_surface(bare(b.r.curve), prof)));
+      }
+    }
+  {
+    SCOPED_TRACE("negative Bernstein weights");
+    const auto m = bare(negative_weight_motion());
+    same(sweep::kinematic_nurbs(m, sweep::circle(4.0)),
+         sweep::to_nurbs(sweep::kinematic_surface(m, sweep::circle(4.0))));
+  }
+  const auto Pe = io::to_poses_exact(io::read_poses(test_data("poses/rational_exact.json")));
+  std::vector<Rational> t;
+  for (const auto& p : Pe) t.push_back(*p.t);
+  for (const auto& prof : {sweep::circle(Rational(7)),
+                           sweep::segment<Rational>(Eigen::Matrix<Rational, 3, 1>(1, 2, 3),
+                                                    Eigen::Matrix<Rational, 3, 1>(-2, 0, 5))}) {
+    SCOPED_TRACE("rational, " + std::to_string(prof.points.size()) + " profile poles");
+    const auto r = exact_spline(Pe, t, TranslationMethod::tr, 2);
+    same(sweep::kinematic_nurbs(r, prof), sweep::to_nurbs(sweep::kinematic_surface(r, prof)));
+  }
+}
+
 TEST(Profiles, TheRationalCircleIsExact) {
   const auto c = sweep::circle(Rational(7));
   const auto h = sweep::to_homogeneous(c);
