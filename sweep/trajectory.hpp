@@ -75,8 +75,9 @@ kernel::BSpline<Eigen::Matrix<Scalar, 3, 1>> add(
 namespace detail {
 
 /// The Bezier pieces of matrix_from_factors' spline, span by span on the factors' common
-/// breakpoints, each handed to visit(piece) as it is made and not kept; returns the spline's
-/// degree and knot vector (from_bezier_pieces assembles it from them).
+/// breakpoints, each handed to visit(piece) as it is made (an lvalue visit may move from; its
+/// storage is otherwise reused for the next piece); returns the spline's degree and knot
+/// vector (from_bezier_pieces assembles it from them).
 template <typename Scalar, typename Visit>
 std::pair<int, std::vector<Scalar>> matrix_pieces(const MotionFactors<Scalar>& f, Visit&& visit) {
   using V3 = Eigen::Matrix<Scalar, 3, 1>;
@@ -140,6 +141,7 @@ std::pair<int, std::vector<Scalar>> matrix_pieces(const MotionFactors<Scalar>& f
   // mixes the old i and i - 1, so going down leaves every old one read before it is
   // overwritten.
   const auto elevate_in_place = [](auto& c, int r) {
+    if (r > 0) c.reserve(c.size() + static_cast<std::size_t>(r));
     for (int step = 0; step < r; ++step) {
       const int n1 = static_cast<int>(c.size());  // new degree
       c.push_back(c.back());
@@ -193,7 +195,7 @@ std::pair<int, std::vector<Scalar>> matrix_pieces(const MotionFactors<Scalar>& f
     for (int i = 0; i <= d; ++i)
       c[static_cast<std::size_t>(i)].template block<3, 1>(1, 0) = a[static_cast<std::size_t>(i)];
     Bernstein<M4> piece(std::move(c), rot[k].a(), rot[k].b());
-    visit(piece);
+    visit(piece);  // may move the piece away (matrix_from_factors keeps it)
     c = std::move(piece).take_coeffs();
   }
   // At a breakpoint the matrix is as smooth as the least smooth factor there.
