@@ -116,17 +116,29 @@ Handle(TCollection_HAsciiString) hstr(const std::string& s) {
   return new TCollection_HAsciiString(s.c_str());
 }
 
-void fill_knots(const std::vector<double>& full, TColStd_Array1OfReal& k,
-                TColStd_Array1OfInteger& m) {
-  std::vector<double> d;
-  std::vector<int> mu;
-  knots_to_distinct(full, d, mu);
-  k.Resize(1, static_cast<int>(d.size()), false);
-  m.Resize(1, static_cast<int>(d.size()), false);
-  for (std::size_t i = 0; i < d.size(); ++i) {
-    k.SetValue(static_cast<int>(i) + 1, d[i]);
-    m.SetValue(static_cast<int>(i) + 1, mu[i]);
-  }
+TColStd_Array1OfReal occt_reals(const std::vector<double>& v) {
+  TColStd_Array1OfReal a(1, static_cast<int>(v.size()));
+  for (std::size_t i = 0; i < v.size(); ++i) a.SetValue(static_cast<int>(i) + 1, v[i]);
+  return a;
+}
+
+TColStd_Array1OfInteger occt_ints(const std::vector<int>& v) {
+  TColStd_Array1OfInteger a(1, static_cast<int>(v.size()));
+  for (std::size_t i = 0; i < v.size(); ++i) a.SetValue(static_cast<int>(i) + 1, v[i]);
+  return a;
+}
+
+/// A full knot vector as OpenCASCADE's distinct knots and their multiplicities.
+struct OcctKnots {
+  TColStd_Array1OfReal knots;
+  TColStd_Array1OfInteger mults;
+};
+
+OcctKnots occt_knots(const std::vector<double>& full) {
+  std::vector<double> distinct;
+  std::vector<int> mults;
+  knots_to_distinct(full, distinct, mults);
+  return {occt_reals(distinct), occt_ints(mults)};
 }
 
 Handle(Geom_BSplineSurface) make_surface(const sweep::NurbsSurface<double>& s) {
@@ -140,11 +152,9 @@ Handle(Geom_BSplineSurface) make_surface(const sweep::NurbsSurface<double>& s) {
       weights.SetValue(i + 1, j + 1,
                        s.weights[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)]);
     }
-  TColStd_Array1OfReal ku(1, 1), kv(1, 1);
-  TColStd_Array1OfInteger mu(1, 1), mv(1, 1);
-  fill_knots(s.knots_u, ku, mu);
-  fill_knots(s.knots_v, kv, mv);
-  return new Geom_BSplineSurface(poles, weights, ku, kv, mu, mv, s.degree_u, s.degree_v);
+  const OcctKnots ku = occt_knots(s.knots_u), kv = occt_knots(s.knots_v);
+  return new Geom_BSplineSurface(poles, weights, ku.knots, kv.knots, ku.mults, kv.mults, s.degree_u,
+                                 s.degree_v);
 }
 
 Handle(Geom_BSplineCurve) make_curve(const sweep::NurbsCurve<double>& c) {
@@ -156,10 +166,8 @@ Handle(Geom_BSplineCurve) make_curve(const sweep::NurbsCurve<double>& c) {
     poles.SetValue(i + 1, gp_Pnt(p(0), p(1), p(2)));
     weights.SetValue(i + 1, c.weights[static_cast<std::size_t>(i)]);
   }
-  TColStd_Array1OfReal k(1, 1);
-  TColStd_Array1OfInteger m(1, 1);
-  fill_knots(c.knots, k, m);
-  return new Geom_BSplineCurve(poles, weights, k, m, c.degree);
+  const OcctKnots k = occt_knots(c.knots);
+  return new Geom_BSplineCurve(poles, weights, k.knots, k.mults, c.degree);
 }
 
 sweep::NurbsSurface<double> from_occt(Handle(Geom_BSplineSurface) g) {
@@ -906,18 +914,6 @@ std::vector<double> reals(const Array& a) {
 template <typename Array>
 std::vector<int> ints(const Array& a) {
   return std::vector<int>(a.begin(), a.end());
-}
-
-TColStd_Array1OfReal occt_reals(const std::vector<double>& v) {
-  TColStd_Array1OfReal a(1, static_cast<int>(v.size()));
-  for (std::size_t i = 0; i < v.size(); ++i) a.SetValue(static_cast<int>(i) + 1, v[i]);
-  return a;
-}
-
-TColStd_Array1OfInteger occt_ints(const std::vector<int>& v) {
-  TColStd_Array1OfInteger a(1, static_cast<int>(v.size()));
-  for (std::size_t i = 0; i < v.size(); ++i) a.SetValue(static_cast<int>(i) + 1, v[i]);
-  return a;
 }
 
 void put_occt(ByteWriter& w, const Handle(Geom_BSplineCurve) & c) {

@@ -154,23 +154,29 @@ Bernstein<Coef> derivative(const Bernstein<Coef>& p) {
   return Bernstein<Coef>(std::move(c), p.a(), p.b());
 }
 
+/// Degree elevation by r of the coefficients c, in place: step by step, the new coefficient
+/// i mixes the old i and i - 1, so going down reads every old one before overwriting it.
+template <typename Coef>
+void elevate_coeffs(std::vector<Coef>& c, int r) {
+  using S = coef_scalar_t<Coef>;
+  if (r <= 0) return;
+  c.reserve(c.size() + static_cast<std::size_t>(r));
+  for (int step = 0; step < r; ++step) {
+    const int n1 = static_cast<int>(c.size());  // new degree
+    c.push_back(c.back());
+    for (int i = n1 - 1; i >= 1; --i) {
+      const S w = S(S(i) / S(n1));
+      c[static_cast<std::size_t>(i)] =
+          detail::lerp(c[static_cast<std::size_t>(i)], c[static_cast<std::size_t>(i - 1)], w);
+    }
+  }
+}
+
 /// Degree elevation by r: the same polynomial with degree n + r.
 template <typename Coef>
 Bernstein<Coef> elevate(const Bernstein<Coef>& p, int r = 1) {
-  using S = coef_scalar_t<Coef>;
   std::vector<Coef> c = p.coeffs();
-  for (int step = 0; step < r; ++step) {
-    const int n1 = static_cast<int>(c.size());  // new degree
-    std::vector<Coef> e(c.size() + 1, coef_zero<Coef>());
-    e.front() = c.front();
-    e.back() = c.back();
-    for (int i = 1; i < n1; ++i) {
-      const S w = S(S(i) / S(n1));
-      e[static_cast<std::size_t>(i)] =
-          detail::lerp(c[static_cast<std::size_t>(i)], c[static_cast<std::size_t>(i - 1)], w);
-    }
-    c = std::move(e);
-  }
+  elevate_coeffs(c, r);
   return Bernstein<Coef>(std::move(c), p.a(), p.b());
 }
 
@@ -210,6 +216,21 @@ struct RingMul {
   }
 };
 
+/// The weights C(k,i) C(l,j) / C(k+l,i+j) of formula (29) for degrees k and l, (i, j) row
+/// by row: a caller that multiplies many pairs of one pair of degrees makes them once.
+template <typename S>
+std::vector<S> product_weights(int k, int l) {
+  std::vector<S> bk, bl, bkl, w;
+  for (int i = 0; i <= k; ++i) bk.push_back(binomial<S>(k, i));
+  for (int j = 0; j <= l; ++j) bl.push_back(binomial<S>(l, j));
+  for (int i = 0; i <= k + l; ++i) bkl.push_back(binomial<S>(k + l, i));
+  for (int i = 0; i <= k; ++i)
+    for (int j = 0; j <= l; ++j)
+      w.push_back(S(bk[static_cast<std::size_t>(i)] * bl[static_cast<std::size_t>(j)] /
+                    bkl[static_cast<std::size_t>(i + j)]));
+  return w;
+}
+
 /// Product p * q by formula (29): b_i^k b_j^l = C(k,i) C(l,j) / C(k+l,i+j) b_{i+j}^{k+l}.
 /// The coefficient order is kept (p's coefficient on the left) for non-commutative rings.
 /// `op` may be any bilinear map of the coefficients (e.g. the polar form of a quadratic
@@ -221,17 +242,12 @@ auto product(const Bernstein<A>& p, const Bernstein<B>& q, Op op = {}) {
   if (p.a() != q.a() || p.b() != q.b())
     throw Error(Errc::invalid_input, "product of polynomials on different intervals");
   const int k = p.degree(), l = q.degree();
-  std::vector<S> bk, bl, bkl;
-  for (int i = 0; i <= k; ++i) bk.push_back(binomial<S>(k, i));
-  for (int j = 0; j <= l; ++j) bl.push_back(binomial<S>(l, j));
-  for (int i = 0; i <= k + l; ++i) bkl.push_back(binomial<S>(k + l, i));
+  const std::vector<S> w = product_weights<S>(k, l);
   std::vector<R> c(static_cast<std::size_t>(k + l + 1), coef_zero<R>());
+  std::size_t n = 0;
   for (int i = 0; i <= k; ++i)
-    for (int j = 0; j <= l; ++j) {
-      const S w = S(bk[static_cast<std::size_t>(i)] * bl[static_cast<std::size_t>(j)] /
-                    bkl[static_cast<std::size_t>(i + j)]);
-      c[static_cast<std::size_t>(i + j)] += scale(w, R(op(p[i], q[j])));
-    }
+    for (int j = 0; j <= l; ++j, ++n)
+      c[static_cast<std::size_t>(i + j)] += scale(w[n], R(op(p[i], q[j])));
   return Bernstein<R>(std::move(c), p.a(), p.b());
 }
 

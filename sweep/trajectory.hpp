@@ -137,33 +137,13 @@ std::pair<int, std::vector<Scalar>> matrix_pieces(const MotionFactors<Scalar>& f
         nu[i + j] += kernel::scale(pair_weight[w], m);
       }
   };
-  // Degree elevation by r in place, step by step as kernel::elevate: the new coefficient i
-  // mixes the old i and i - 1, so going down leaves every old one read before it is
-  // overwritten.
-  const auto elevate_in_place = [](auto& c, int r) {
-    if (r > 0) c.reserve(c.size() + static_cast<std::size_t>(r));
-    for (int step = 0; step < r; ++step) {
-      const int n1 = static_cast<int>(c.size());  // new degree
-      c.push_back(c.back());
-      for (int i = n1 - 1; i >= 1; --i) {
-        const Scalar w = Scalar(Scalar(i) / Scalar(n1));
-        c[static_cast<std::size_t>(i)] = kernel::detail::lerp(
-            c[static_cast<std::size_t>(i)], c[static_cast<std::size_t>(i - 1)], w);
-      }
-    }
-  };
   // Degree: 2k for |Q_rot|^2 and U; the translation column 2k + l (TR), 2k + max(l1, l2)
   // (TRT), l (minimal order).
   const int l1 = f.translation.degree();
   int d = std::max(k2, l1 + (method == kernel::TranslationMethod::minimal ? 0 : k2));
   if (method == kernel::TranslationMethod::trt) d = std::max(d, k2 + f.translation2->degree());
-  // The weights of kernel::product's formula (29) for |Q_rot|^2 (degree 2k) times p (l1).
-  std::vector<Scalar> product_weight;
-  for (int i = 0; i <= k2; ++i)
-    for (int j = 0; j <= l1; ++j)
-      product_weight.push_back(
-          Scalar(kernel::binomial<Scalar>(k2, i) * kernel::binomial<Scalar>(l1, j) /
-                 kernel::binomial<Scalar>(k2 + l1, i + j)));
+  // kernel::product's weights for |Q_rot|^2 (degree 2k) times p (l1).
+  const std::vector<Scalar> product_weight = kernel::product_weights<Scalar>(k2, l1);
   std::vector<V3> a;  // column 0 below the weight
   std::vector<M4> c;  // the piece's coefficients, handed to visit and taken back
   for (std::size_t k = 0; k < rot.size(); ++k) {
@@ -181,7 +161,7 @@ std::pair<int, std::vector<Scalar>> matrix_pieces(const MotionFactors<Scalar>& f
               product_weight[w], V3(kernel::RingMul{}(nu[static_cast<std::size_t>(i)](0, 0),
                                                       p[static_cast<std::size_t>(j)])));
     }
-    elevate_in_place(a, d - (static_cast<int>(a.size()) - 1));
+    kernel::elevate_coeffs(a, d - (static_cast<int>(a.size()) - 1));
     if (method == kernel::TranslationMethod::trt) {
       std::vector<M3> u;
       for (const auto& m : nu) u.push_back(m.template block<3, 3>(1, 1));
@@ -191,7 +171,7 @@ std::pair<int, std::vector<Scalar>> matrix_pieces(const MotionFactors<Scalar>& f
         a[static_cast<std::size_t>(i)] = V3(a[static_cast<std::size_t>(i)] + b[i]);
     }
     c.assign(nu.begin(), nu.end());
-    elevate_in_place(c, d - k2);
+    kernel::elevate_coeffs(c, d - k2);
     for (int i = 0; i <= d; ++i)
       c[static_cast<std::size_t>(i)].template block<3, 1>(1, 0) = a[static_cast<std::size_t>(i)];
     Bernstein<M4> piece(std::move(c), rot[k].a(), rot[k].b());
