@@ -4,12 +4,17 @@
 # code (kernel, sweep, io, CLI) and the fuzz targets (label fuzz: each fuzzes for
 # QMOTION_FUZZ_SECONDS, default 30, and replays its past findings).
 # Not run here: the Python module and FreeCAD (an instrumented library cannot be loaded into
-# an uninstrumented interpreter), the installed-package example and the format check.
+# an uninstrumented interpreter), the installed-package example, the format check, the
+# header check and the golden digests (recorded from the GCC Release build).
 # Extra arguments go to the CMake configure step (e.g. -DQMOTION_FUZZ_SECONDS=300).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 launcher=()
-if command -v ccache >/dev/null 2>&1; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
+if command -v ccache >/dev/null 2>&1; then
+  launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+  # Paths relative to the clone, so that another clone (CI's) reuses the cache.
+  export CCACHE_BASEDIR=$PWD CCACHE_NOHASHDIR=1
+fi
 # A tree configured with another compiler (GCC, before the fuzz targets) starts afresh.
 if [[ -f build-sanitized/CMakeCache.txt ]] &&
   ! grep -q '^CMAKE_CXX_COMPILER:.*clang' build-sanitized/CMakeCache.txt; then
@@ -22,4 +27,4 @@ cmake --build build-sanitized -j "$(nproc)"
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
 export LSAN_OPTIONS=suppressions=$PWD/tests/sanitizer/lsan.supp:print_suppressions=0
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-ctest --test-dir build-sanitized --output-on-failure -j 2 -E '^(python|interop|example|format)\.'
+ctest --test-dir build-sanitized --output-on-failure -j 2 -E '^(python|interop|example|format|golden|headers)\.'

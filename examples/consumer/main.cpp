@@ -21,7 +21,7 @@ int main(int argc, char** argv) {
   try {
     std::filesystem::create_directories(out);
     const qm::io::PoseSet poses = qm::io::parse_poses_json(kPoses, "the consumer's poses");
-    const qm::io::InterpolatedMotion made = qm::io::interpolate(poses, {});
+    const qm::InterpolatedMotion made = qm::interpolate(poses, {});
     // The motion value survives its file: save, load, and the same curve comes back.
     qm::io::save_motion(made.motion, (out / "motion.json").string());
     const qm::kernel::Motion<double> motion = qm::io::load_motion((out / "motion.json").string());
@@ -34,11 +34,11 @@ int main(int argc, char** argv) {
               << "\n";
     const qm::sweep::Profile<double> circle = qm::io::read_profile("circle:3");
     for (const bool solid : {false, true}) {
-      qm::io::ExportOptions opt;
+      qm::ExportOptions opt;
       opt.output = (out / (solid ? "tube_solid.step" : "tube.step")).string();
       opt.solid = solid;
-      const qm::io::ExportResult r = qm::io::export_surface(motion, circle, "circle:3", opt);
-      const nlohmann::json c = qm::io::check_geometry(opt.output, motion, circle, std::nullopt);
+      const qm::ExportResult r = qm::export_surface(motion, circle, "circle:3", opt);
+      const nlohmann::json c = qm::check_geometry(opt.output, motion, circle, std::nullopt);
       std::cout << opt.output << ": " << r.faces << " faces, relative deviation "
                 << c["relative_deviation"] << ", valid " << c["valid"] << ", closed " << c["closed"]
                 << (solid ? ", volume " + c["volume"].dump() : "") << "\n";
@@ -48,14 +48,14 @@ int main(int argc, char** argv) {
     }
     // The non-rational mode: a KKS quaternion spline through the same poses, its sweep
     // fitted within 1e-5 mm and checked against the spline itself.
-    qm::io::QSplineOptions qo;
+    qm::QSplineOptions qo;
     qo.scheme = "kks";
-    const qm::io::QSplineMotion q = qm::io::qspline(poses, qo);
-    qm::io::ExportOptions qopt;
+    const qm::io::QSplineMotion q = qm::qspline(poses, qo);
+    qm::ExportOptions qopt;
     qopt.output = (out / "tube_kks.step").string();
     qopt.tol = 1e-5;
-    const auto qr = qm::io::export_geometry(q, qm::io::Geometry::sweep(circle, "circle:3"), qopt);
-    const nlohmann::json qc = qm::io::check(qopt.output, q, qm::io::Geometry::sweep(circle));
+    const auto qr = qm::export_geometry(q, qm::Geometry::sweep(circle, "circle:3"), qopt);
+    const nlohmann::json qc = qm::check(qopt.output, q, qm::Geometry::sweep(circle));
     std::cout << qopt.output << ": " << qr.poles << " poles, fitted within " << *qr.approx_tolerance
               << ", deviation from the spline " << qc["max_deviation"] << "\n";
     ok = ok && qc["max_deviation"].get<double>() <= 1e-5 && qc["valid"].get<bool>();

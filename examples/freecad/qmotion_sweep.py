@@ -11,7 +11,7 @@ import Part
 
 import qmotion
 
-POSES = "poses.json"  # a pose file (SPEC §5), or a list of rows [t, x, y, z, qw, qx, qy, qz]
+POSES = "poses.json"  # a pose file (docs/formats.md), or a list of rows [t, x, y, z, qw, qx, qy, qz]
 PROFILE = "circle:3"  # any qmotion profile: a .json/.step/.igs file, rect:w,h, segment:...
 
 

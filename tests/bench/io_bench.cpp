@@ -8,11 +8,11 @@
 #include <cstdio>
 #include <fstream>
 #include <map>
+#include <qmotion/api/export.hpp>
+#include <qmotion/api/interpolate.hpp>
+#include <qmotion/api/motion_info.hpp>
 #include <qmotion/io/atomic_file.hpp>
-#include <qmotion/io/export.hpp>
-#include <qmotion/io/interpolate.hpp>
 #include <qmotion/io/json_number.hpp>
-#include <qmotion/io/motion_info.hpp>
 #include <qmotion/io/motion_json.hpp>
 #include <qmotion/io/nurbs_json.hpp>
 #include <qmotion/io/poses.hpp>
@@ -46,9 +46,9 @@ const std::string& motion_text(int n) {
   static std::map<int, std::string> cache;
   auto& s = cache[n];
   if (s.empty()) {
-    io::InterpolateOptions opt;
+    qmotion::InterpolateOptions opt;
     opt.form = "bspline";
-    s = io::interpolate(io::parse_poses_json(helix_poses(n), "helix"), opt).text();
+    s = qmotion::interpolate(io::parse_poses_json(helix_poses(n), "helix"), opt).text();
   }
   return s;
 }
@@ -76,7 +76,7 @@ void BM_ReadMotionNlohmann(benchmark::State& state) {  // the reference reader, 
 void BM_Info(benchmark::State& state) {  // read and describe (qmotion info)
   const std::string& text = motion_text(static_cast<int>(state.range(0)));
   for (auto _ : state)
-    benchmark::DoNotOptimize(io::motion_info(io::parse_motion_text(text, "m.json"), false));
+    benchmark::DoNotOptimize(qmotion::motion_info(io::parse_motion_text(text, "m.json"), false));
   state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations() * text.size()));
 }
 
@@ -116,7 +116,7 @@ const sweep::NurbsCurve<double>& trajectory(int n) {
   auto it = cache.find(n);
   if (it == cache.end()) {
     const auto m = io::to_motion(io::parse_motion_text(motion_text(n), "m.json"));
-    it = cache.emplace(n, io::trajectory_nurbs(m, Eigen::Vector3d(1, 0, 2))).first;
+    it = cache.emplace(n, qmotion::trajectory_nurbs(m, Eigen::Vector3d(1, 0, 2))).first;
   }
   return it->second;
 }

@@ -34,8 +34,8 @@
 #include <memory>
 #include <numeric>
 #include <optional>
-#include <qmotion/io/export.hpp>
-#include <qmotion/io/interpolate.hpp>
+#include <qmotion/api/export.hpp>
+#include <qmotion/api/interpolate.hpp>
 #include <qmotion/io/occt.hpp>
 #include <qmotion/io/poses.hpp>
 #include <qmotion/kernel/interpolation.hpp>
@@ -675,7 +675,7 @@ Row exact_route(const Case& c, int repeats, WriteTimes& wt) {
   });
 }
 
-/// Route 1 under `--max-degree D --tol T`: io::sweep_nurbs approximates on a common knot
+/// Route 1 under `--max-degree D --tol T`: qmotion::sweep_nurbs approximates on a common knot
 /// vector (what a user whose CAD system caps the degree gets from qmotion). Timed without
 /// the self-intersection check that every CLI sweep runs: construction only.
 void capped_routes(const Case& c, bool smoke, int repeats, int resolution, std::vector<Row>& rows) {
@@ -687,11 +687,11 @@ void capped_routes(const Case& c, bool smoke, int repeats, int resolution, std::
       std::ostringstream set;
       set << "--max-degree " << deg << " --tol " << tol;
       rows.push_back(measure(c, "1 qmotion, degree capped", set.str(), repeats, resolution, [&] {
-        io::ExportOptions o;
+        qmotion::ExportOptions o;
         o.max_degree = deg;
         o.tol = tol;
         o.self_intersection_check = false;  // construction only, as for the other routes
-        const auto s = io::sweep_nurbs(c.motion, sweep::single_edge(c.profile), o);
+        const auto s = qmotion::sweep_nurbs(c.motion, sweep::single_edge(c.profile), o);
         return TopoDS_Shape(BRepBuilderAPI_MakeFace(to_occt(s.front()), 1e-7).Face());
       }));
     }
@@ -783,9 +783,9 @@ kernel::Pose<double> pose(double angle_deg, const V3& axis, const V3& position) 
 }
 
 kernel::Motion<double> demo_motion(const std::string& data) {
-  io::InterpolateOptions o;
+  qmotion::InterpolateOptions o;
   o.form = "bezier";
-  return io::interpolate(io::read_poses(data + "/poses/five_positions.json"), o).motion;
+  return qmotion::interpolate(io::read_poses(data + "/poses/five_positions.json"), o).motion;
 }
 
 /// Four poses turning 140 degrees in all about a tilted axis: elliptic (cubic) rotation,
@@ -822,7 +822,7 @@ sweep::NurbsCurve<double> cubic_profile() {  // open cubic NURBS, uneven weights
 }  // namespace
 
 int main(int argc, char** argv) {
-  // malloc as the qmotion executable sets it (io/cli/huge_pages.cpp), for every route alike:
+  // malloc as the qmotion executable sets it (cli/huge_pages.cpp), for every route alike:
   // with glibc's sliding defaults a route's time depended on the heap the routes before it
   // left (the same exact build took 0.8 or 1.9 ms as blocks were unmapped and trimmed
   // between repeats and touched afresh).

@@ -1,11 +1,11 @@
 // tests/bench/sweep_bench.cpp: motion file -> exact surface -> STEP, side by side with
 // OpenCASCADE fitting the same surface from exact points (GeomAPI_PointsToBSplineSurface,
-// an approximation: the peer the SPEC names).
+// an approximation: the peer the contract names).
 #include <benchmark/benchmark.h>
 
 #include <filesystem>
 #include <fstream>
-#include <qmotion/io/evaluate.hpp>
+#include <qmotion/api/evaluate.hpp>
 #include <qmotion/io/json_number.hpp>
 #include <qmotion/io/motion_json.hpp>
 #include <qmotion/io/occt.hpp>
@@ -136,7 +136,8 @@ const GridCase& grid_case() {
 
 void BM_GridOurs(benchmark::State& st) {
   const auto& g = grid_case();
-  for (auto _ : st) benchmark::DoNotOptimize(io::evaluate_grid(g.s, g.us, g.vs, st.range(0) != 0));
+  for (auto _ : st)
+    benchmark::DoNotOptimize(qmotion::evaluate_grid(g.s, g.us, g.vs, st.range(0) != 0));
   st.SetItemsProcessed(st.iterations() * static_cast<std::int64_t>(g.us.size() * g.vs.size()));
   st.SetLabel(st.range(0) ? "all cores (oneTBB)" : "one core");
 }
@@ -146,7 +147,7 @@ void BM_Peer_GridOcctD0(benchmark::State& st) {
   const auto& g = grid_case();
   const Handle(Geom_BSplineSurface) occt = bench::to_occt(g.s);
   // The two agree (checked once, outside the timing).
-  const auto ours = io::evaluate_grid(g.s, g.us, g.vs, false);
+  const auto ours = qmotion::evaluate_grid(g.s, g.us, g.vs, false);
   double diff = 0;
   for (std::size_t i = 0; i < g.us.size(); i += 10)
     for (std::size_t j = 0; j < g.vs.size(); j += 10) {

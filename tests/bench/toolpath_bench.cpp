@@ -1,13 +1,13 @@
 // tests/bench/toolpath_bench.cpp: the guaranteed toolpath sampler (certified chords and
-// axes, sweep::sample_toolpath) in points per second along the 40-pose helix's B-spline
+// axes, cam::sample_toolpath) in points per second along the 40-pose helix's B-spline
 // motion, and the time to write a 10^4-point toolpath (APT, CSV, G-code) through
-// io::toolpath (--max-step sets the count); NURBS G-code (--nurbs) against G1 moves.
+// qmotion::toolpath (--max-step sets the count); NURBS G-code (--nurbs) against G1 moves.
 #include <benchmark/benchmark.h>
 
 #include <filesystem>
-#include <qmotion/io/interpolate.hpp>
+#include <qmotion/api/interpolate.hpp>
+#include <qmotion/api/toolpath.hpp>
 #include <qmotion/io/poses.hpp>
-#include <qmotion/io/toolpath.hpp>
 #include <qmotion/sweep/surface.hpp>
 #include <string>
 
@@ -16,8 +16,8 @@ namespace qm = qmotion;
 
 const qm::kernel::Motion<double>& helix() {
   static const qm::kernel::Motion<double> m =
-      qm::io::interpolate(
-          qm::io::read_poses(std::string(QMOTION_TEST_DATA) + "/poses/helix_40.json"), {})
+      qm::interpolate(qm::io::read_poses(std::string(QMOTION_TEST_DATA) + "/poses/helix_40.json"),
+                      {})
           .motion;
   return m;
 }
@@ -26,11 +26,11 @@ void BM_Sampler(benchmark::State& state) {
   const auto& m = helix();
   const auto h = qm::sweep::trajectory(m, Eigen::Vector3d(1, 0, 2));
   const auto d = qm::sweep::trajectories(m, {Eigen::Vector4d(0, 1, 0, 1)}).front();
-  qm::sweep::SamplerOptions o;
+  qm::cam::SamplerOptions o;
   o.chord_tol = std::pow(10.0, -static_cast<double>(state.range(0)));
   std::size_t points = 0;
   for (auto _ : state) {
-    const auto s = qm::sweep::sample_toolpath(h, d, o);
+    const auto s = qm::cam::sample_toolpath(h, d, o);
     points = s.samples.size();
     benchmark::DoNotOptimize(s.max_chord_bound);
   }
@@ -44,7 +44,7 @@ BENCHMARK(BM_Sampler)->Arg(1)->Arg(2)->Arg(3)->Arg(4)->Unit(benchmark::kMillisec
 void BM_Write10k(benchmark::State& state) {
   const char* ext[] = {".apt", ".csv", ".ngc"};
   const qm::io::AnyMotion m = helix();
-  qm::io::ToolpathOptions o;
+  qm::ToolpathOptions o;
   o.output = (std::filesystem::temp_directory_path() /
               (std::string("qmotion_bench_tp") + ext[state.range(0)]))
                  .string();
@@ -53,19 +53,19 @@ void BM_Write10k(benchmark::State& state) {
   o.chord_tol = 0.01;
   o.max_step = 0.05;  // about 10^4 points along the helix
   std::size_t points = 0;
-  for (auto _ : state) points = qm::io::toolpath(m, o).samples.size();
+  for (auto _ : state) points = qm::toolpath(m, o).samples.size();
   state.counters["points"] = static_cast<double>(points);
   state.SetLabel(ext[state.range(0)]);
   std::filesystem::remove(o.output);
 }
 BENCHMARK(BM_Write10k)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
 
-/// --nurbs: the certified cubic (sweep::cam_nurbs: fit, rounding, certificate) and the
+/// --nurbs: the certified cubic (cam::cam_nurbs: fit, rounding, certificate) and the
 /// G-code, against the linear toolpath at the same chord tolerance (angle tolerance 89
 /// degrees, so that only the chord decides).
 void BM_Nurbs(benchmark::State& state) {
   const qm::io::AnyMotion m = helix();
-  qm::io::ToolpathOptions o;
+  qm::ToolpathOptions o;
   o.output = (std::filesystem::temp_directory_path() / "qmotion_bench_tpn.ngc").string();
   o.point = Eigen::Vector3d(1, 0, 2);
   o.chord_tol = std::pow(10.0, -static_cast<double>(state.range(0)));
@@ -73,7 +73,7 @@ void BM_Nurbs(benchmark::State& state) {
   o.nurbs = state.range(1) != 0;
   std::size_t blocks = 0;
   for (auto _ : state) {
-    const auto tp = qm::io::toolpath(m, o);
+    const auto tp = qm::toolpath(m, o);
     blocks = tp.nurbs ? tp.nurbs->curve.ctrl().size() : tp.samples.size();
   }
   state.counters["blocks"] = static_cast<double>(blocks);

@@ -1,4 +1,4 @@
-// tests/cli/cli_test.cpp: the qmotion executable against SPEC §6 (exit codes, messages,
+// tests/cli/cli_test.cpp: the qmotion executable against docs/formats.md (exit codes, messages,
 // JSON output, no output file on failure).
 #include <fcntl.h>
 #include <gtest/gtest.h>

@@ -8,15 +8,15 @@
 #include <unistd.h>
 
 #include <filesystem>
-#include <qmotion/io/cli/command.hpp>
+#include <qmotion/api/export.hpp>
+#include <qmotion/api/interpolate.hpp>
 #include <qmotion/io/exact_number.hpp>
-#include <qmotion/io/export.hpp>
-#include <qmotion/io/interpolate.hpp>
 #include <qmotion/io/profiles.hpp>
-#include <qmotion/io/render.hpp>
+#include <qmotion/render/render.hpp>
 #include <sstream>
 #include <vector>
 
+#include "command.hpp"
 #include "fuzz_util.hpp"
 
 namespace {
@@ -37,11 +37,12 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
   std::filesystem::create_directories(dir);
   g_motion = (dir / "motion.json").string();
   g_curve = (dir / "curve.json").string();
-  const auto made = io::interpolate(io::parse_poses_json(kPoses, "poses"), {});
+  const auto made = qmotion::interpolate(io::parse_poses_json(kPoses, "poses"), {});
   io::save_motion(made.motion, g_motion);
-  io::ExportOptions opt;
+  qmotion::ExportOptions opt;
   opt.output = g_curve;
-  io::export_geometry(made.motion, io::Geometry::trajectory(Eigen::Vector3d(1, 2, 3)), opt);
+  qmotion::export_geometry(made.motion, qmotion::Geometry::trajectory(Eigen::Vector3d(1, 2, 3)),
+                           opt);
   return 0;
 }
 
@@ -70,8 +71,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       break;
     case 4:
       fuzz::accept_refusals([&] { (void)io::parse_point(rest, "--point"); });
-      fuzz::accept_refusals([&] { (void)io::parse_view(rest); });
-      fuzz::accept_refusals([&] { (void)io::parse_size(rest); });
+      fuzz::accept_refusals([&] { (void)render::parse_view(rest); });
+      fuzz::accept_refusals([&] { (void)render::parse_size(rest); });
       break;
     default:
       fuzz::accept_refusals([&] {

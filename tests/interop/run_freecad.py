@@ -11,7 +11,7 @@ Usage: run_freecad.py QMOTION DATA WORK_DIR   (DATA: the repository's tests/data
    within --tol): every shape is valid and FreeCAD's offset
    (makeOffsetShape 0.5) succeeds; thickening succeeds on the smooth ones (a B-spline
    motion and a c1 motion x the parabola, a Bezier motion x circle:3); the sharp-edged
-   rect:4,2 shell is held to the outward offset (SPEC §4: OpenCASCADE 7.6 cannot thicken
+   rect:4,2 shell is held to the outward offset (docs/formats.md: OpenCASCADE 7.6 cannot thicken
    it). The --solid tube is closed, thickens with makeThickness, cuts a box, and its
    volume matches qmotion's independent value: OpenCASCADE's adaptive BRepGProp (through
    `qmotion check`) within 1e-6, FreeCAD's fixed-order Volume within 1e-4.
@@ -129,7 +129,7 @@ def operation_cases(qmotion, data, work):
                                ("bezier", "five_positions.json", []), ("screw", "screw_three.json", [])):
         motions[name] = os.path.join(work, "motion_%s.json" % name)
         run("interpolate", os.path.join(data, "poses", poses), "-o", motions[name], *extra)
-    for scheme in ("kks", "quintic"):  # non-rational: fitted within --tol (SPEC §3)
+    for scheme in ("kks", "quintic"):  # non-rational: fitted within --tol (docs/geometry.md)
         motions[scheme] = os.path.join(work, "motion_%s.json" % scheme)
         run("qspline", os.path.join(data, "helix_10.json"), "-o", motions[scheme], "--scheme", scheme)
     parabola = os.path.join(data, "profiles/parabola.json")

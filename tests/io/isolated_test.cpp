@@ -1,11 +1,12 @@
 // tests/io/isolated_test.cpp mirrors io/isolated.hpp
+#include "isolated.hpp"
+
 #include <signal.h>
 #include <unistd.h>
 
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
-#include <qmotion/io/isolated.hpp>
 #include <qmotion/io/json_number.hpp>
 #include <stdexcept>
 

@@ -10,9 +10,9 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <qmotion/io/evaluate.hpp>
-#include <qmotion/io/export.hpp>
-#include <qmotion/io/interpolate.hpp>
+#include <qmotion/api/evaluate.hpp>
+#include <qmotion/api/export.hpp>
+#include <qmotion/api/interpolate.hpp>
 #include <qmotion/io/poses.hpp>
 #include <qmotion/io/profiles.hpp>
 #include <qmotion/sweep/surface.hpp>
@@ -33,7 +33,8 @@ fs::path scratch(const std::string& name) {
 
 const kernel::Motion<double>& coil() {
   static const kernel::Motion<double> m =
-      io::interpolate(io::read_poses(test_data("self_intersection/coil_open.json")), {}).motion;
+      qmotion::interpolate(io::read_poses(test_data("self_intersection/coil_open.json")), {})
+          .motion;
   return m;
 }
 
@@ -128,11 +129,12 @@ TEST(Mesh, SolidMeshesAreClosedOrientedAndWithinTheDeflection) {
   const auto profile = io::read_profile("circle:3", "mm");
   for (double D : {1.0, 0.1, 0.01}) {
     SCOPED_TRACE("deflection " + std::to_string(D));
-    io::ExportOptions o;
+    qmotion::ExportOptions o;
     o.output = scratch("tube.ply").string();
     o.solid = true;
     o.deflection = D;
-    const io::ExportResult res = io::export_geometry(coil(), io::Geometry::sweep(profile), o);
+    const qmotion::ExportResult res =
+        qmotion::export_geometry(coil(), qmotion::Geometry::sweep(profile), o);
     ASSERT_TRUE(res.mesh.has_value());
     EXPECT_LE(res.mesh->max_deviation, D);
     EXPECT_TRUE(res.mesh->closed);
@@ -179,14 +181,14 @@ TEST(Mesh, SolidMeshesAreClosedOrientedAndWithinTheDeflection) {
 
 TEST(Mesh, EveryFormatHoldsTheSameTriangles) {
   const auto profile = io::read_profile("rect:4,2", "mm");
-  io::ExportOptions o;
+  qmotion::ExportOptions o;
   o.solid = true;
   o.deflection = 0.1;
   o.output = scratch("box.ply").string();
-  const auto ply = io::export_geometry(coil(), io::Geometry::sweep(profile), o);
+  const auto ply = qmotion::export_geometry(coil(), qmotion::Geometry::sweep(profile), o);
   const std::size_t n = ply.mesh->triangles.size();
   o.output = scratch("box.stl").string();  // binary: 80 + 4 + 50 per triangle
-  io::export_geometry(coil(), io::Geometry::sweep(profile), o);
+  qmotion::export_geometry(coil(), qmotion::Geometry::sweep(profile), o);
   EXPECT_EQ(fs::file_size(o.output), 84 + 50 * n);
   {
     std::ifstream in(o.output, std::ios::binary);
@@ -203,7 +205,7 @@ TEST(Mesh, EveryFormatHoldsTheSameTriangles) {
   }
   o.ascii = true;
   o.output = scratch("box_ascii.stl").string();
-  io::export_geometry(coil(), io::Geometry::sweep(profile), o);
+  qmotion::export_geometry(coil(), qmotion::Geometry::sweep(profile), o);
   std::ifstream stl(o.output);
   std::size_t facets = 0;
   for (std::string line; std::getline(stl, line);)
@@ -211,7 +213,7 @@ TEST(Mesh, EveryFormatHoldsTheSameTriangles) {
   EXPECT_EQ(facets, n);
   o.ascii = false;
   o.output = scratch("box.obj").string();
-  io::export_geometry(coil(), io::Geometry::sweep(profile), o);
+  qmotion::export_geometry(coil(), qmotion::Geometry::sweep(profile), o);
   std::ifstream obj(o.output);
   std::size_t faces = 0, verts = 0;
   for (std::string line; std::getline(obj, line);) {
@@ -224,7 +226,7 @@ TEST(Mesh, EveryFormatHoldsTheSameTriangles) {
 
 TEST(EvaluateGrid, EqualsPointwiseEvaluationSerialAndParallel) {
   // The exact sweep of the coil by a circle: degree 9 x 2, C0 knots in v.
-  const auto faces = io::sweep_nurbs(coil(), io::read_profile("circle:3", "mm"));
+  const auto faces = qmotion::sweep_nurbs(coil(), io::read_profile("circle:3", "mm"));
   const auto& s = faces.front();
   std::vector<double> us, vs;
   const double u0 = s.knots_u.front(), u1 = s.knots_u.back();
@@ -232,8 +234,8 @@ TEST(EvaluateGrid, EqualsPointwiseEvaluationSerialAndParallel) {
   for (int i = 0; i <= 400; ++i) us.push_back(u0 + (u1 - u0) * i / 400);
   for (int j = 0; j <= 60; ++j) vs.push_back(v0 + (v1 - v0) * j / 60);
   for (double k : s.knots_v) vs.push_back(k);  // the knots themselves, C0 joints included
-  const auto serial = io::evaluate_grid(s, us, vs, false);
-  const auto parallel = io::evaluate_grid(s, us, vs, true);
+  const auto serial = qmotion::evaluate_grid(s, us, vs, false);
+  const auto parallel = qmotion::evaluate_grid(s, us, vs, true);
   ASSERT_EQ(serial.size(), us.size() * vs.size());
   double worst = 0;
   for (std::size_t i = 0; i < us.size(); i += 7)
@@ -243,28 +245,29 @@ TEST(EvaluateGrid, EqualsPointwiseEvaluationSerialAndParallel) {
     }
   EXPECT_LE(worst, 1e-12 * 30);
   for (std::size_t k = 0; k < serial.size(); ++k) ASSERT_EQ(serial[k], parallel[k]) << k;
-  EXPECT_TRUE(throws_error([&] { io::evaluate_grid(s, {u1 + 1}, vs); }, Errc::invalid_input,
+  EXPECT_TRUE(throws_error([&] { qmotion::evaluate_grid(s, {u1 + 1}, vs); }, Errc::invalid_input,
                            {"u[0]", "outside"}));
   EXPECT_TRUE(
-      throws_error([&] { io::evaluate_grid(s, us, {NAN}); }, Errc::invalid_input, {"v[0]"}));
+      throws_error([&] { qmotion::evaluate_grid(s, us, {NAN}); }, Errc::invalid_input, {"v[0]"}));
 }
 
 TEST(Mesh, BadMeshOptionsAreRefusedAndWriteNothing) {
   const auto profile = io::read_profile("circle:3", "mm");
   const std::string out = scratch("bad.stl").string();
   auto with = [&](auto change) {
-    io::ExportOptions o;
+    qmotion::ExportOptions o;
     o.output = out;
     change(o);
-    return [o, &profile] { io::export_geometry(coil(), io::Geometry::sweep(profile), o); };
+    return
+        [o, &profile] { qmotion::export_geometry(coil(), qmotion::Geometry::sweep(profile), o); };
   };
-  EXPECT_TRUE(throws_error(with([](io::ExportOptions& o) { o.deflection = -1; }),
+  EXPECT_TRUE(throws_error(with([](qmotion::ExportOptions& o) { o.deflection = -1; }),
                            Errc::invalid_input, {"--deflection"}));
-  EXPECT_TRUE(throws_error(with([](io::ExportOptions& o) { o.deflection = NAN; }),
+  EXPECT_TRUE(throws_error(with([](qmotion::ExportOptions& o) { o.deflection = NAN; }),
                            Errc::invalid_input, {"--deflection"}));
-  EXPECT_TRUE(throws_error(with([](io::ExportOptions& o) { o.angle_deg = 0; }), Errc::invalid_input,
-                           {"--angle"}));
-  EXPECT_TRUE(throws_error(with([](io::ExportOptions& o) {
+  EXPECT_TRUE(throws_error(with([](qmotion::ExportOptions& o) { o.angle_deg = 0; }),
+                           Errc::invalid_input, {"--angle"}));
+  EXPECT_TRUE(throws_error(with([](qmotion::ExportOptions& o) {
                              o.deflection = 0.1;
                              o.output = "x.step";
                            }),

@@ -6,8 +6,8 @@
 #include <charconv>
 #include <cmath>
 #include <filesystem>
+#include <qmotion/api/interpolate.hpp>
 #include <qmotion/io/exact_number.hpp>
-#include <qmotion/io/interpolate.hpp>
 #include <qmotion/io/motion_json.hpp>
 #include <qmotion/io/poses.hpp>
 #include <random>
@@ -116,9 +116,9 @@ std::vector<std::pair<std::string, std::string>> motion_texts() {
     out.emplace_back(f, io::read_text_file(f));
   for (const auto& e : std::filesystem::directory_iterator(kData + "/motions_v1"))
     out.emplace_back(e.path().string(), io::read_text_file(e.path().string()));
-  io::InterpolateOptions opt;
+  qmotion::InterpolateOptions opt;
   opt.form = "bspline";
-  const auto m = io::interpolate(io::read_poses(kData + "/helix_10.json"), opt);
+  const auto m = qmotion::interpolate(io::read_poses(kData + "/helix_10.json"), opt);
   out.emplace_back("interpolated.json", m.text());
   out.emplace_back("interpolated_tree.json", m.document().dump(1));
   return out;
@@ -145,13 +145,13 @@ TEST(MotionJson, StreamedTextIsTheTreesDocumentAndReadsBackBitForBit) {
       {"", "bezier", "elliptic", "trt"}};
   for (const auto& c : cases) {
     SCOPED_TRACE(c.poses + " " + c.form + " " + c.rotation + " " + c.translation);
-    io::InterpolateOptions o;
+    qmotion::InterpolateOptions o;
     o.form = c.form;
     o.rotation = c.rotation;
     o.translation = c.translation;
     const io::PoseSet set =
         c.poses.empty() ? io::parse_poses_json(mixed, "mixed\t\"poses\"") : io::read_poses(c.poses);
-    const io::InterpolatedMotion made = io::interpolate(set, o);
+    const qmotion::InterpolatedMotion made = qmotion::interpolate(set, o);
     // nlohmann compares numbers by value: every double of the text reads back bit for bit.
     const std::string text = made.text();
     EXPECT_EQ(nlohmann::json::parse(text), made.document());
@@ -192,9 +192,10 @@ TEST(MotionJson, LongMotionsAreWrittenInBlocksWithTheBytesOfOneCore) {
        << std::sin(h / 2) * 0.6 << ", 0, " << std::sin(h / 2) * 0.8 << "]}}";
   }
   os << "]}";
-  io::InterpolateOptions o;
+  qmotion::InterpolateOptions o;
   o.form = "bspline";
-  const io::InterpolatedMotion made = io::interpolate(io::parse_poses_json(os.str(), "helix"), o);
+  const qmotion::InterpolatedMotion made =
+      qmotion::interpolate(io::parse_poses_json(os.str(), "helix"), o);
   const std::string text = made.text();
   tbb::task_arena one(1);
   EXPECT_TRUE(one.execute([&] { return made.text(); }) == text);

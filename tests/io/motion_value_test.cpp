@@ -2,8 +2,8 @@
 // its file (io/motion_json.hpp): every interpolator's Motion survives save and load, files
 // written before the type existed still read, malformed method blocks are refused.
 #include <filesystem>
+#include <qmotion/api/interpolate.hpp>
 #include <qmotion/io/exact_number.hpp>
-#include <qmotion/io/interpolate.hpp>
 #include <qmotion/io/motion_json.hpp>
 #include <qmotion/io/poses.hpp>
 #include <qmotion/kernel/interpolation.hpp>

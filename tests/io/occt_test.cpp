@@ -4,13 +4,13 @@
 #include <fstream>
 #include <qmotion/io/json_number.hpp>
 #include <qmotion/io/occt.hpp>
-#include <qmotion/io/occt_unchecked.hpp>
 #include <qmotion/io/profiles.hpp>
 #include <qmotion/sweep/profiles.hpp>
 #include <qmotion/sweep/surface.hpp>
 #include <random>
 
 #include "io_test_util.hpp"
+#include "occt_unchecked.hpp"
 
 namespace qmotion::test {
 namespace {

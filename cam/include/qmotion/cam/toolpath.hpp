@@ -1,0 +1,216 @@
+// <qmotion/cam/toolpath.hpp>: cutter-location points along a trajectory with certified chord and
+// axis-angle bounds (CAM). The bounds come from the Bezier control points of the
+// trajectory's pieces (convex hull), not from sampling.
+#pragma once
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <qmotion/kernel/bspline.hpp>
+#include <qmotion/kernel/error.hpp>
+#include <string>
+#include <vector>
+
+namespace qmotion::cam {
+
+struct ToolpathSample {
+  double t = 0;
+  Eigen::Vector3d point, axis;  ///< axis: unit
+};
+
+struct SamplerOptions {
+  double chord_tol = 0.01;                                    ///< length units, > 0
+  double angle_tol = 0.5 * 3.14159265358979323846 / 180;      ///< radians, > 0
+  double max_step = std::numeric_limits<double>::infinity();  ///< chord length cap
+  int subdivisions = 4;  ///< parts per piece for the bound (tighter with more)
+  /// Called with the share of the interval done after every point (none: not called).
+  std::function<void(double)> progress;
+};
+
+struct SampledToolpath {
+  std::vector<ToolpathSample> samples;
+  double max_chord_bound = 0;  ///< the largest certified chord deviation of a segment
+  double max_angle_bound = 0;  ///< the largest certified axis angle of a segment (rad)
+  std::size_t bound_evaluations = 0;
+};
+
+namespace detail {
+
+inline double point_segment_distance(const Eigen::Vector3d& x, const Eigen::Vector3d& a,
+                                     const Eigen::Vector3d& b) {
+  const Eigen::Vector3d ab = b - a;
+  const double l2 = ab.squaredNorm();
+  const double s = l2 > 0 ? std::clamp((x - a).dot(ab) / l2, 0.0, 1.0) : 0.0;
+  return (x - (a + s * ab)).norm();
+}
+
+inline double angle_between(const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
+  return std::atan2(u.cross(v).norm(), u.dot(v));
+}
+
+/// The Bernstein coefficients over the local [s0, s1] (0 <= s0 < s1 <= 1) of the polynomial
+/// with coefficients c over [0, 1], by two de Casteljau splits (O(n^2), no blossoms).
+inline void sub_bezier(const std::vector<Eigen::Vector4d>& c, double s0, double s1,
+                       std::vector<Eigen::Vector4d>& out) {
+  out = c;
+  const std::size_t n = c.size() - 1;
+  if (s0 > 0)  // keep [s0, 1]: the right side of the triangle
+    for (std::size_t r = 1; r <= n; ++r)
+      for (std::size_t i = 0; i + r <= n; ++i) out[i] = out[i] + s0 * (out[i + 1] - out[i]);
+  if (s1 < 1) {  // keep [s0, s1] of it: the left side
+    const double u = (s1 - s0) / (1 - s0);
+    for (std::size_t r = 1; r <= n; ++r)
+      for (std::size_t i = n; i >= r; --i) out[i] = out[i - 1] + u * (out[i] - out[i - 1]);
+  }
+}
+
+}  // namespace detail
+
+/// Cutter-location points along the homogeneous trajectory `h` (w, w x; positive weights)
+/// with the tool axis along the spatial part of `d` (a homogeneous direction, weight 0, the
+/// image of the moving axis; its length is irrelevant). Consecutive points are as far apart
+/// as the bounds allow (a greedy search on t, doubling then bisecting the step):
+/// - chord: on every Bezier part of [t0, t1] (the pieces of h split at their breakpoints
+///   and each into opt.subdivisions parts), every Cartesian control point lies within
+///   chord_tol of the segment P(t0) P(t1). The curve lies in the convex hull of those
+///   points and the distance to a segment is convex, so the whole arc does.
+/// - axis: every control vector of d on those parts lies within angle_tol of every other.
+///   The axes d(t) and the linear blend of the end axes lie in the cone they span, so each
+///   d(t) is within angle_tol of the blend (cones narrower than 90 degrees).
+/// - the chord is at most max_step long.
+/// Throws Errc::numerical_failure when a step below 1e-12 of the interval is needed.
+inline SampledToolpath sample_toolpath(const kernel::BSpline<Eigen::Vector4d>& h,
+                                       const kernel::BSpline<Eigen::Vector4d>& d,
+                                       const SamplerOptions& opt) {
+  const double a = h.a(), b = h.b();
+  std::vector<double> breaks = h.breakpoints();
+  for (double x : d.breakpoints()) breaks.push_back(x);
+  std::sort(breaks.begin(), breaks.end());
+  breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
+  auto point = [&](double t) {
+    const Eigen::Vector4d y = kernel::evaluate(h, t);
+    return Eigen::Vector3d(y.tail<3>() / y(0));
+  };
+  auto axis = [&](double t) {
+    return Eigen::Vector3d(kernel::evaluate(d, t).tail<3>().normalized());
+  };
+  // The Bezier pieces of h and d on the common spans, computed once; a part of a span is
+  // cut from its piece by de Casteljau (detail::sub_bezier).
+  std::vector<std::vector<Eigen::Vector4d>> hpieces, dpieces;
+  for (std::size_t k = 0; k + 1 < breaks.size(); ++k) {
+    hpieces.push_back(kernel::bezier_piece(h, breaks[k], breaks[k + 1]).coeffs());
+    dpieces.push_back(kernel::bezier_piece(d, breaks[k], breaks[k + 1]).coeffs());
+  }
+  std::vector<Eigen::Vector4d> part;
+  SampledToolpath out;
+  // The certified chord and angle bounds of [t0, t1].
+  auto bounds = [&](double t0, double t1, const Eigen::Vector3d& p0, const Eigen::Vector3d& p1) {
+    ++out.bound_evaluations;
+    double chord = 0;
+    std::vector<Eigen::Vector3d> gens;
+    auto first = std::upper_bound(breaks.begin(), breaks.end(), t0);
+    double u = t0;
+    while (u < t1) {
+      const double next = first != breaks.end() ? std::min(*first, t1) : t1;
+      const std::size_t span = static_cast<std::size_t>(first - breaks.begin()) - 1;
+      const double xa = breaks[span], len = breaks[span + 1] - xa;
+      for (int k = 0; k < opt.subdivisions; ++k) {
+        const double u0 = u + (next - u) * k / opt.subdivisions;
+        const double u1 =
+            k + 1 == opt.subdivisions ? next : u + (next - u) * (k + 1) / opt.subdivisions;
+        if (!(u1 > u0)) continue;
+        const double s0 = std::clamp((u0 - xa) / len, 0.0, 1.0),
+                     s1 = std::clamp((u1 - xa) / len, 0.0, 1.0);
+        detail::sub_bezier(hpieces[span], s0, s1, part);
+        for (const auto& c : part) {
+          if (!(c(0) > 0)) return std::pair<double, double>(HUGE_VAL, HUGE_VAL);
+          chord = std::max(chord, detail::point_segment_distance(c.tail<3>() / c(0), p0, p1));
+        }
+        detail::sub_bezier(dpieces[span], s0, s1, part);
+        for (const auto& c : part) gens.push_back(c.tail<3>());
+      }
+      u = next;
+      if (first != breaks.end()) ++first;
+    }
+    // The widest pair of generators, by the smallest cosine (one acos at the end).
+    for (auto& g : gens) g.normalize();
+    double min_dot = 1;
+    for (std::size_t i = 0; i < gens.size(); ++i)
+      for (std::size_t j = i + 1; j < gens.size(); ++j)
+        min_dot = std::min(min_dot, gens[i].dot(gens[j]));
+    const double angle = std::acos(std::clamp(min_dot, -1.0, 1.0));
+    return std::pair<double, double>(chord, angle);
+  };
+  auto ok = [&](double t0, double t1, const Eigen::Vector3d& p0, double& chord, double& angle) {
+    const Eigen::Vector3d p1 = point(t1);
+    if ((p1 - p0).norm() > opt.max_step) return false;
+    const auto [c, g] = bounds(t0, t1, p0, p1);
+    chord = c;
+    angle = g;
+    return c <= opt.chord_tol && g <= opt.angle_tol;
+  };
+  double t0 = a, step = (b - a) / 16;
+  Eigen::Vector3d p0 = point(a);
+  out.samples.push_back({a, p0, axis(a)});
+  const double min_step = 1e-12 * (b - a);
+  while (t0 < b) {
+    double chord = 0, angle = 0, good_chord = 0, good_angle = 0;
+    double lo = 0, hi = 0;  // largest accepted and smallest refused steps
+    double s = std::min(step, b - t0);
+    if (ok(t0, t0 + s, p0, chord, angle)) {
+      lo = s;
+      good_chord = chord;
+      good_angle = angle;
+      while (lo < b - t0) {  // grow
+        s = std::min(2 * lo, b - t0);
+        if (!ok(t0, t0 + s, p0, chord, angle)) {
+          hi = s;
+          break;
+        }
+        lo = s;
+        good_chord = chord;
+        good_angle = angle;
+      }
+    } else {
+      hi = s;
+      while (true) {  // shrink
+        s = hi / 2;
+        if (s < min_step)
+          throw Error(Errc::numerical_failure,
+                      "the toolpath needs a step below 1e-12 of the interval near t = " +
+                          std::to_string(t0) + " (the chord or angle tolerance cannot be met)");
+        if (ok(t0, t0 + s, p0, chord, angle)) {
+          lo = s;
+          good_chord = chord;
+          good_angle = angle;
+          break;
+        }
+        hi = s;
+      }
+    }
+    if (hi > 0)  // bisect between the accepted and the refused step
+      for (int it = 0; it < 12 && hi - lo > 1e-3 * lo; ++it) {
+        const double m = 0.5 * (lo + hi);
+        if (ok(t0, t0 + m, p0, chord, angle)) {
+          lo = m;
+          good_chord = chord;
+          good_angle = angle;
+        } else {
+          hi = m;
+        }
+      }
+    const double t1 = lo >= b - t0 ? b : t0 + lo;
+    out.max_chord_bound = std::max(out.max_chord_bound, good_chord);
+    out.max_angle_bound = std::max(out.max_angle_bound, good_angle);
+    p0 = point(t1);
+    out.samples.push_back({t1, p0, axis(t1)});
+    if (opt.progress) opt.progress((t1 - a) / (b - a));
+    step = lo;
+    t0 = t1;
+  }
+  return out;
+}
+
+}  // namespace qmotion::cam

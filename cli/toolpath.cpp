@@ -1,0 +1,76 @@
+// cli/toolpath.cpp: `qmotion toolpath`.
+#include <CLI/CLI.hpp>
+#include <iostream>
+#include <memory>
+#include <qmotion/api/export.hpp>
+#include <qmotion/api/toolpath.hpp>
+#include <qmotion/io/json_number.hpp>
+
+#include "command.hpp"
+
+namespace qmotion::cli {
+
+Command add_toolpath(CLI::App& app) {
+  auto* sub = app.add_subcommand(
+      "toolpath",
+      "Write cutter-location points along the trajectory of --point with the tool axis "
+      "R(t)(i,j,k): every chord within --chord-tol of the exact trajectory and every axis within "
+      "--angle-tol of the chord's blend, certified from the control points (APT, CSV, G-code)");
+  struct Options {
+    std::string motion, point, axis = "0,0,1", chord_tol, angle_tol, max_step, feed;
+    qmotion::ToolpathOptions options;
+  };
+  auto o = std::make_shared<Options>();
+  sub->add_option("MOTION", o->motion, "Motion JSON file (either kind)")->required();
+  sub->add_option("--point", o->point, "Tool reference point x,y,z of the moving space")
+      ->required();
+  sub->add_option("--axis", o->axis, "Tool axis i,j,k of the moving space (default 0,0,1)");
+  sub->add_option("--chord-tol", o->chord_tol,
+                  "Largest distance of the exact trajectory from the chords, in the output unit")
+      ->required();
+  sub->add_option("--angle-tol", o->angle_tol, "Largest axis deviation in degrees (default 0.5)");
+  sub->add_option("--max-step", o->max_step, "Longest chord (default: no cap)");
+  sub->add_option("--feed", o->feed, "Feed per minute for APT FEDRAT and G-code F (default 1000)");
+  sub->add_flag("--arc-length", o->options.arc_length, "CSV: add the arc length s");
+  sub->add_option("--rotary", o->options.rotary,
+                  "G-code: ac for a table-tilting A/C machine (Rx(A) Rz(C) takes the tool axis to "
+                  "+Z, pivot at the workpiece origin; C unwrapped, the branch kept continuous)");
+  sub->add_flag("--c-hold", o->options.c_hold,
+                "--rotary ac: keep the previous C where the axis is vertical (else refused)");
+  sub->add_flag("--nurbs", o->options.nurbs,
+                "G-code: Fanuc-style G06.2 NURBS blocks of degree <= 3 instead of G1 moves: the "
+                "exact trajectory where its degree allows, else a cubic fit, within --chord-tol "
+                "(certified for the numbers as written; 3-axis)");
+  sub->add_option(
+      "--units", o->options.units,
+      "Write in U and read --chord-tol, --max-step and --feed in U: mm, in (APT, G-code) "
+      "or any of mm, cm, m, um, in, ft (CSV); default the motion's (mm for APT and "
+      "G-code unless it is in inches)");
+  sub->add_option("-o,--output", o->options.output, "Output .apt/.cls, .csv or .nc/.ngc")
+      ->required();
+  return {sub, [o] {
+            auto& opt = o->options;
+            opt.point = io::parse_point(o->point, "--point");
+            opt.axis = io::parse_point(o->axis, "--axis");
+            opt.chord_tol = io::parse_number_text(o->chord_tol, "--chord-tol").value;
+            if (!o->angle_tol.empty())
+              opt.angle_tol_deg = io::parse_number_text(o->angle_tol, "--angle-tol").value;
+            if (!o->max_step.empty())
+              opt.max_step = io::parse_number_text(o->max_step, "--max-step").value;
+            if (!o->feed.empty()) opt.feed = io::parse_number_text(o->feed, "--feed").value;
+            const auto tp = qmotion::toolpath(io::load_any_motion(o->motion), opt);
+            std::cout << tp.report().dump(2) << "\n";
+            if (tp.nurbs)
+              std::cerr << "qmotion: wrote " << tp.path << " (NURBS of degree "
+                        << tp.nurbs->curve.degree() << ", " << tp.nurbs->curve.ctrl().size()
+                        << " control points, deviation <= " << tp.nurbs->max_deviation_bound << " "
+                        << tp.units << ")\n";
+            else
+              std::cerr << "qmotion: wrote " << tp.path << " (" << tp.samples.size()
+                        << " points, chord deviation <= " << tp.max_chord_bound << " " << tp.units
+                        << ")\n";
+            return 0;
+          }};
+}
+
+}  // namespace qmotion::cli

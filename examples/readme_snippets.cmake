@@ -1,0 +1,23 @@
+# The README shows examples/tour.cpp and examples/python/tour.py whole, each after a line
+# `<!-- snippet: PATH -->`: fails when a block differs from its file (which CTest builds
+# and runs as example.tour and example.tour_python).
+file(READ ${SOURCE_DIR}/README.md readme)
+foreach(path examples/tour.cpp examples/python/tour.py)
+  file(READ ${SOURCE_DIR}/${path} code)
+  string(FIND "${readme}" "<!-- snippet: ${path} -->\n" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "README.md has no snippet of ${path}")
+  endif()
+  string(SUBSTRING "${readme}" ${at} -1 rest)
+  string(FIND "${rest}" "```" open)
+  string(SUBSTRING "${rest}" ${open} -1 rest)
+  string(FIND "${rest}" "\n" eol)
+  math(EXPR eol "${eol} + 1")
+  string(SUBSTRING "${rest}" ${eol} -1 rest)
+  string(FIND "${rest}" "```" close)
+  string(SUBSTRING "${rest}" 0 ${close} block)
+  if(NOT block STREQUAL code)
+    message(FATAL_ERROR "README.md's block for ${path} differs from the file")
+  endif()
+endforeach()
+message(STATUS "README.md's C++ and Python tours are the tested files")

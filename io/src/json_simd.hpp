@@ -1,0 +1,79 @@
+// io/src/json_simd.hpp: simdjson's on-demand parser behind qmotion's readers. Internal to
+// qmotion_io (not installed: simdjson is a private dependency).
+#pragma once
+#include <simdjson.h>
+
+#include <functional>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <qmotion/io/json_number.hpp>
+#include <qmotion/io/poses.hpp>
+#include <string>
+
+static_assert(simdjson::SIMDJSON_PADDING <= qmotion::io::kReadPadding);
+
+namespace qmotion::io::simd {
+
+namespace sj = simdjson::ondemand;
+
+/// Texts longer than this are read with a parser of their own (Document::own).
+inline constexpr std::size_t kOwnParserChars = std::size_t(1) << 20;
+
+/// A document being read with this thread's parser (a long text: with its own): the text in place
+/// when it has simdjson's padding as spare capacity (read_text_file leaves it), else a padded copy.
+/// `ok` is false when simdjson refused the text outright.
+struct Document {
+  explicit Document(const std::string& text);  ///< text must outlive the Document
+  simdjson::padded_string padded;
+  /// A parser of its own for a text above kOwnParserChars, freed with the document: the
+  /// thread's parser would keep an index the size of the longest text it ever read (4 bytes
+  /// a character reserved, about 5 MB touched for a 10^4-pose motion).
+  std::unique_ptr<sj::parser> own;
+  sj::document doc;
+  bool ok = false;
+  /// True when nothing but white space follows the root value (the on-demand parser
+  /// stops after it, so trailing content is checked here).
+  bool at_end();
+};
+
+/// Builds `out` from v, as parse_json would: float literals as their source text, or as
+/// doubles when `plain`. False on any error (the caller then falls back to nlohmann, which
+/// words the message), and for arrays and objects nested more than kMaxJsonDepth levels
+/// deep in the document, v lying `depth` levels deep.
+bool build(sj::value v, nlohmann::json& out, bool plain, std::size_t depth = 0);
+/// Validates v whole without building anything.
+bool check(sj::value v);
+
+/// The number at v (a JSON number, or a string holding a plain decimal literal) with its
+/// source text, as read_number would read it. False for anything else (including "p/q"
+/// strings): the caller falls back to the DOM reader. With `lean`, a decimal whose text is
+/// the shortest round-trip text of its value is kept without its text (Number::source()
+/// gives it back).
+bool number(sj::value v, Number& out, bool lean = false);
+
+/// Appends the numbers of the array at v to `out` (as number() reads each, `lean` too);
+/// false for anything else.
+bool numbers(sj::value v, std::vector<Number>& out, bool lean = false);
+
+/// Reads `text`, a JSON array of rows of numbers ("[[1, 2.5], [3, 4]]") with `width`
+/// numbers a row (0: as many as the first row has), each number as number(..., lean) reads
+/// it, by a strict scanner of its own that cuts a long text at row ends and reads the parts
+/// on every core. `rows(n, w)` is told the row count and width once, before any number, and
+/// returns false to refuse them; `row(i)` is where row i's w numbers go (called from several
+/// threads, each row once). False for anything the scanner does not take (a string, a
+/// nested array, an integer of 19 characters or more, a number out of double's range, rows
+/// of another width, bad syntax): the caller then reads the text with read_value.
+bool number_rows(std::string_view text, std::size_t width,
+                 const std::function<bool(std::size_t, std::size_t)>& rows,
+                 const std::function<Number*(std::size_t)>& row, bool lean);
+
+/// Reads `text`, one JSON value's text cut out of a document (sj::array::raw_json), with a
+/// parser of its own, and hands the value to `read`; false when it is not valid or `read`
+/// returns false.
+bool read_value(std::string_view text, const std::function<bool(sj::value)>& read);
+
+/// The pose document at v (parse_poses_fast's reader, for a pose document inside another
+/// file); std::nullopt as parse_poses_fast; throws the set's checks.
+std::optional<PoseSet> poses(sj::value v, const std::string& source);
+
+}  // namespace qmotion::io::simd
