@@ -1,4 +1,4 @@
-// api/src/qspline.cpp: the non-rational mode as library calls (docs/guide/qspline.md).
+// api/src/qspline.cpp: the non-rational mode as library calls (docs/guide/commands.md).
 #include <cmath>
 #include <qmotion/api/interpolate.hpp>
 #include <qmotion/api/motion_info.hpp>
@@ -12,7 +12,7 @@
 #include <sstream>
 
 namespace qmotion {
-using namespace io;
+using namespace io;  // NOLINT: the formats this call reads and writes
 namespace {
 
 using json = nlohmann::json;

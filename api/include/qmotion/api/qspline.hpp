@@ -1,4 +1,4 @@
-// <qmotion/api/qspline.hpp>: the non-rational mode as library calls (docs/guide/qspline.md):
+// <qmotion/api/qspline.hpp>: the non-rational mode as library calls (docs/guide/commands.md):
 // poses -> a quaternion-spline motion, and its `info` and `eval` reports.
 #pragma once
 #include <Eigen/Core>
