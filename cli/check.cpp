@@ -5,6 +5,7 @@
 #include <qmotion/api/exact_check.hpp>
 #include <qmotion/api/export.hpp>
 #include <qmotion/io/profiles.hpp>
+#include <qmotion/io/qspline_file.hpp>
 #include <qmotion/kernel/error.hpp>
 
 #include "command.hpp"
@@ -59,14 +60,13 @@ Command add_check(CLI::App& app) {
               throw Error(Errc::invalid_input, "check: GEOMETRY is required (or use --exact)");
             if (o->profile.empty() == o->point.empty())
               throw Error(Errc::invalid_input, "check: give exactly one of --profile and --point");
-            const io::AnyMotion m = io::load_any_motion(o->motion);
+            const Motion m = io::load_motion(o->motion);
             if (o->grid < 1 || o->grid > 1000)
               throw Error(Errc::invalid_input, "--grid: expected 1 to 1000");
             const qmotion::Geometry g =
                 o->profile.empty()
                     ? qmotion::Geometry::trajectory(io::parse_point(o->point, "--point"))
-                    : qmotion::Geometry::sweep(io::read_profile(o->profile, io::units_of(m)),
-                                               o->profile);
+                    : qmotion::Geometry::sweep(io::read_profile(o->profile, m.units()), o->profile);
             std::cout << qmotion::check(o->file, m, g, o->grid).dump(2) << "\n";
             return 0;
           }};

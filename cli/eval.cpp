@@ -2,12 +2,9 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 #include <memory>
-#include <qmotion/api/export.hpp>
 #include <qmotion/api/motion_info.hpp>
-#include <qmotion/api/qspline.hpp>
 #include <qmotion/io/json_number.hpp>
-#include <qmotion/io/motion_json.hpp>
-#include <qmotion/kernel/error.hpp>
+#include <qmotion/io/point_text.hpp>
 
 #include "command.hpp"
 
@@ -27,31 +24,17 @@ Command add_eval(CLI::App& app) {
       ->allow_extra_args(false);
   sub->add_option("--point", o->point,
                   "Point x,y,z of the moving space whose image is reported (default: the origin)");
-  return {
-      sub, [o] {
-        std::string text = io::read_text_file(o->path);
-        const double t = io::parse_number_text(o->t, "--t").value;
-        const Eigen::Vector3d x =
-            o->point.empty() ? Eigen::Vector3d::Zero() : io::parse_point(o->point, "--point");
-        std::optional<io::MotionFile> fast =
-            io::parse_motion_fast(text, o->path, /*with_method=*/false);
-        if (fast) std::string().swap(text);  // read: its megabytes go before the work
-        nlohmann::json doc = fast ? nlohmann::json() : io::parse_json(text, o->path, "method");
-        if (!fast && io::is_qspline_document(doc)) {
-          std::cout
-              << qmotion::qspline_eval(io::qspline_from_document(doc, o->path), t, x, o->t).dump(2)
-              << '\n';
-          return 0;
-        }
-        const io::MotionFile f =
-            fast ? std::move(*fast) : io::parse_motion(std::move(doc), o->path);
-        std::string warning;
-        const auto out = qmotion::motion_eval(f, t, x, &warning, o->t);
-        if (!warning.empty())
-          std::cerr << "qmotion: warning: " << o->path << " " << warning << "\n";
-        std::cout << out.dump(2) << '\n';
-        return 0;
-      }};
+  return {sub, [o] {
+            const double t = io::parse_number_text(o->t, "--t").value;
+            const Eigen::Vector3d x =
+                o->point.empty() ? Eigen::Vector3d::Zero() : io::parse_point(o->point, "--point");
+            std::string warning;
+            const auto out = qmotion::eval_file(o->path, t, x, &warning, o->t);
+            if (!warning.empty())
+              std::cerr << "qmotion: warning: " << o->path << " " << warning << "\n";
+            std::cout << out.dump(2) << '\n';
+            return 0;
+          }};
 }
 
 }  // namespace qmotion::cli

@@ -33,8 +33,8 @@ Command add_qspline(CLI::App& app) {
                   "otherwise), chordal, star-chordal, centripetal, angular, angular-chordal. KKS "
                   "and the quartic place the keys at uniform knots on the interval");
   return {sub, [o] {
-            const io::QSplineMotion r = qmotion::qspline(io::read_poses(o->poses), o->options);
-            io::write_file_atomic(o->output, r.document.dump(1) + "\n");
+            const qmotion::QSplineResult r = qmotion::qspline(io::read_poses(o->poses), o->options);
+            r.save(o->output);
             std::cerr << "qmotion: wrote " << o->output << " (" << r.summary << ")\n";
             return 0;
           }};

@@ -3,6 +3,7 @@
 #include <iostream>
 #include <memory>
 #include <qmotion/io/profiles.hpp>
+#include <qmotion/io/qspline_file.hpp>
 #include <qmotion/kernel/error.hpp>
 #include <qmotion/render/render.hpp>
 
@@ -45,9 +46,8 @@ Command add_render(CLI::App& app) {
               std::tie(o->options.width, o->options.height) = render::parse_size(o->size);
             for (const auto& p : o->points)
               o->options.points.push_back(io::parse_point(p, "--point"));
-            const io::AnyMotion m = io::load_any_motion(o->motion);
-            if (!o->profile.empty())
-              o->options.profile = io::read_profile(o->profile, io::units_of(m));
+            const Motion m = io::load_motion(o->motion);
+            if (!o->profile.empty()) o->options.profile = io::read_profile(o->profile, m.units());
             const auto r = render::render(m, o->options);
             std::cerr << "qmotion: wrote " << r.path << " (" << r.width << "x" << r.height << ", "
                       << r.trajectories
@@ -89,8 +89,8 @@ Command add_plot(CLI::App& app) {
             if (!o->point.empty()) o->options.point = io::parse_point(o->point, "--point");
             if (!o->size.empty())
               std::tie(o->options.width, o->options.height) = render::parse_size(o->size);
-            std::vector<io::AnyMotion> motions{io::load_any_motion(o->motion)};
-            for (const auto& f : o->compare) motions.push_back(io::load_any_motion(f));
+            std::vector<Motion> motions{io::load_motion(o->motion)};
+            for (const auto& f : o->compare) motions.push_back(io::load_motion(f));
             const auto series = render::plot(motions, o->options);
             std::cerr << "qmotion: wrote " << o->options.output << " ("
                       << render::to_string(o->options.quantity) << ")\n";

@@ -5,6 +5,7 @@
 #include <qmotion/api/export.hpp>
 #include <qmotion/io/json_number.hpp>
 #include <qmotion/io/profiles.hpp>
+#include <qmotion/io/qspline_file.hpp>
 #include <qmotion/kernel/error.hpp>
 
 #include "command.hpp"
@@ -53,9 +54,9 @@ Command add_sweep(CLI::App& app) {
           if (!(o->options.deflection > 0))
             throw Error(Errc::invalid_input, "--deflection: expected a positive length");
         }
-        const io::AnyMotion m = io::load_any_motion(o->motion);
+        const Motion m = io::load_motion(o->motion);
         const auto r = qmotion::export_geometry(
-            m, qmotion::Geometry::sweep(io::read_profile(o->profile, io::units_of(m)), o->profile),
+            m, qmotion::Geometry::sweep(io::read_profile(o->profile, m.units()), o->profile),
             o->options);
         if (r.self_intersection && r.self_intersection->found())
           std::cerr << "qmotion: warning: the sweep intersects itself ("

@@ -5,6 +5,7 @@
 #include <qmotion/api/export.hpp>
 #include <qmotion/api/toolpath.hpp>
 #include <qmotion/io/json_number.hpp>
+#include <qmotion/io/qspline_file.hpp>
 
 #include "command.hpp"
 
@@ -58,7 +59,7 @@ Command add_toolpath(CLI::App& app) {
             if (!o->max_step.empty())
               opt.max_step = io::parse_number_text(o->max_step, "--max-step").value;
             if (!o->feed.empty()) opt.feed = io::parse_number_text(o->feed, "--feed").value;
-            const auto tp = qmotion::toolpath(io::load_any_motion(o->motion), opt);
+            const auto tp = qmotion::toolpath(io::load_motion(o->motion), opt);
             std::cout << tp.report().dump(2) << "\n";
             if (tp.nurbs)
               std::cerr << "qmotion: wrote " << tp.path << " (NURBS of degree "

@@ -3,6 +3,7 @@
 #include <iostream>
 #include <memory>
 #include <qmotion/api/export.hpp>
+#include <qmotion/io/qspline_file.hpp>
 #include <qmotion/kernel/error.hpp>
 
 #include "command.hpp"
@@ -26,7 +27,7 @@ Command add_trajectory(CLI::App& app) {
   add_geometry_options(sub, o->options);
   return {sub, [o] {
             const auto r = qmotion::export_geometry(
-                io::load_any_motion(o->motion),
+                io::load_motion(o->motion),
                 qmotion::Geometry::trajectory(io::parse_point(o->point, "--point")), o->options);
             std::cerr << "qmotion: wrote " << r.path << " (degree " << r.degree_u << ", C"
                       << r.continuity_u << ", " << r.poles << " poles, " << r.units << ", "

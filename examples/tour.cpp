@@ -10,7 +10,7 @@ int main(int argc, char** argv) {
   const std::string out = std::string(argv[2]) + "/tour_tube.step";
   try {
     const auto made = qm::interpolate(qm::io::read_poses(argv[1]), {});  // elliptic + TR
-    const qm::kernel::Motion<double>& motion = made.motion;
+    const qm::Motion& motion = made.motion;  // rational here; a qspline is one too
     const auto tube = qm::Geometry::sweep(qm::io::read_profile("circle:3"), "circle:3");
     qm::ExportOptions opt;
     opt.output = out;

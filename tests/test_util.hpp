@@ -3,15 +3,23 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#ifdef QMOTION_WITH_CGAL
 #include <qmotion/kernel/cgal_scalar.hpp>
+#endif
 #include <qmotion/kernel/coefficient.hpp>
 #include <random>
 #include <vector>
 
 namespace qmotion::test {
 
+#ifdef QMOTION_WITH_CGAL
 using kernel::Rational;
+/// The scalars every typed kernel test runs on: double, and exact rationals when built with
+/// CGAL (QMOTION_WITH_CGAL).
 using Scalars = ::testing::Types<double, Rational>;
+#else
+using Scalars = ::testing::Types<double>;
+#endif
 
 /// A random scalar: uniform in [-1, 1] for double, p/q with |p| <= 20, 1 <= q <= 9 for
 /// rationals (small enough that exact products of degree 12 stay fast).

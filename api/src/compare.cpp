@@ -1,6 +1,5 @@
 // api/src/compare.cpp
 #include <cmath>
-#include <functional>
 #include <iomanip>
 #include <qmotion/api/compare.hpp>
 #include <qmotion/api/export.hpp>
@@ -15,26 +14,20 @@ namespace qmotion {
 using namespace io;  // NOLINT: the formats this call reads and writes
 namespace {
 
-/// A motion as the measurements see it: interval, angular velocity and placement.
-struct Measured {
-  double a, b;
-  std::function<Eigen::Vector3d(double)> omega;
-  std::function<Eigen::Vector3d(double, const Eigen::Vector3d&)> place;
-};
-
-void measure(const Measured& m, const CompareOptions& o, SchemeFigures& f) {
+void measure(const Motion& m, const CompareOptions& o, SchemeFigures& f) {
   const int n = std::max(o.samples, 10);
-  const double h = (m.b - m.a) / n;
+  const double h = (m.b() - m.a()) / n;
   const double dh = 1e-4 * h;  // the step of the central differences of omega
   double len = 0;
-  Eigen::Vector3d last = m.place(m.a, o.point);
+  Eigen::Vector3d last = m.place(m.a(), o.point);
   for (int i = 0; i <= n; ++i) {
-    const double t = i == n ? m.b : m.a + h * i;
-    const Eigen::Vector3d w = m.omega(t);
+    const double t = i == n ? m.b() : m.a() + h * i;
+    const Eigen::Vector3d w = m.angular_velocity(t);
     f.max_angular_velocity = std::max(f.max_angular_velocity, w.norm());
-    const double t0 = std::max(m.a, t - dh), t1 = std::min(m.b, t + dh);
+    const double t0 = std::max(m.a(), t - dh), t1 = std::min(m.b(), t + dh);
     f.max_angular_acceleration =
-        std::max(f.max_angular_acceleration, ((m.omega(t1) - m.omega(t0)) / (t1 - t0)).norm());
+        std::max(f.max_angular_acceleration,
+                 ((m.angular_velocity(t1) - m.angular_velocity(t0)) / (t1 - t0)).norm());
     if (i > 0) {  // the polygon of 32 steps per sample: the length to about 1e-9
       for (int k = 1; k <= 32; ++k) {
         const Eigen::Vector3d y = m.place(t - h + h * k / 32, o.point);
@@ -62,12 +55,12 @@ sweep::Profile<double> default_profile(const std::vector<kernel::Pose<double>>& 
 }
 
 /// The sweep's size: the bounding-box diagonal of the profile's control points' trajectories.
-double sweep_size(const Measured& m, const sweep::Profile<double>& profile) {
+double sweep_size(const Motion& m, const sweep::Profile<double>& profile) {
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(HUGE_VAL), hi = -lo;
   for (int i = 0; i <= 400; ++i)
     for (const auto& e : profile.edges)
       for (const auto& x : e.points) {
-        const Eigen::Vector3d y = m.place(m.a + (m.b - m.a) * i / 400, x);
+        const Eigen::Vector3d y = m.place(m.a() + (m.b() - m.a()) * i / 400, x);
         lo = lo.cwiseMin(y);
         hi = hi.cwiseMax(y);
       }
@@ -93,20 +86,10 @@ std::vector<SchemeFigures> compare_schemes(const PoseSet& poses, const CompareOp
       io.param = o.param;
       io.form = f.scheme == "c1" ? "c1" : "bspline";
       const auto r = interpolate(poses, io);
-      const kernel::Motion<double>& m = r.motion;
-      const auto d = kernel::derivative(m.curve.curve);
-      const Measured mm{m.a(), m.b(),
-                        [&](double t) {  // 2 A' conj(A) / |A|^2, A the rotational part
-                          const auto A = kernel::evaluate(m.curve.curve, t).real();
-                          const auto dA = kernel::evaluate(d, t).real();
-                          return Eigen::Vector3d(2 * (dA * A.conj()).vec() / A.norm2());
-                        },
-                        [&](double t, const Eigen::Vector3d& x) {
-                          return kernel::apply_point(kernel::evaluate(m, t), x);
-                        }};
-      measure(mm, o, f);
+      const kernel::Motion<double>& m = r.motion.rational();
+      measure(r.motion, o, f);
       ExportResult er;
-      sweep_nurbs(m, profile, ExportOptions{}, &er);
+      sweep_nurbs(r.motion, profile, ExportOptions{}, &er);
       f.sweep_poles = er.poles;
       f.sweep_degree_u = er.degree_u;
       f.max_key_residual = m.provenance ? m.provenance->max_residual() : 0.0;
@@ -122,13 +105,11 @@ std::vector<SchemeFigures> compare_schemes(const PoseSet& poses, const CompareOp
       QSplineOptions qo;
       qo.scheme = name;
       qo.param = o.param;
-      const QSplineMotion q = qspline(poses, qo);
-      const kernel::QuaternionSpline& s = q.spline;
-      const Measured mm{s.a(), s.b(), [&](double t) { return s.angular_velocity(t); },
-                        [&](double t, const Eigen::Vector3d& x) { return s.place(t, x); }};
-      measure(mm, o, f);
+      const Motion q = qspline(poses, qo).motion;
+      const kernel::QuaternionSpline& s = q.spline();
+      measure(q, o, f);
       ExportOptions eo;
-      eo.tol = o.rel_tol * std::max(sweep_size(mm, profile), 1e-300);
+      eo.tol = o.rel_tol * std::max(sweep_size(q, profile), 1e-300);
       eo.self_intersection_check = false;
       ExportResult er;
       sweep_nurbs(q, profile, eo, &er);

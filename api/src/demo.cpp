@@ -78,8 +78,9 @@ json write_demo(const std::string& dir) {
   const InterpolatedMotion interpolated = interpolate(set, opt);
   const std::string& summary = interpolated.summary;
   interpolated.save((tmp / "motion.json").string());
-  kernel::Motion<double> lm = interpolated.motion;
-  lm.name = "motion.json";  // what the files' headers cite
+  kernel::Motion<double> named = interpolated.motion.rational();
+  named.name = "motion.json";  // what the files' headers cite
+  const Motion lm(std::move(named));
   // The paper's Figure 5 idea: a parabola of the moving space swept by the motion.
   const sweep::NurbsCurve<double> parabola{
       2, {0, 0, 0, 1, 1, 1}, {{-10, 0, 10}, {0, 0, -10}, {10, 0, 10}}, {1, 1, 1}};
@@ -112,7 +113,7 @@ json write_demo(const std::string& dir) {
     ro.profile = sweep::single_edge(parabola);
     ro.object_size = 6;
     ro.title = "qmotion demo: " + summary;
-    render::render_figure(AnyMotion(lm), ro).write((tmp / "demo.svg").string());
+    render::render_figure(lm, ro).write((tmp / "demo.svg").string());
   }
   const json doc{{"motion", {{"file", "motion.json"}, {"summary", summary}}},
                  {"exactness", report}};

@@ -33,7 +33,8 @@ InterpolatedMotion finish(kernel::Motion<Scalar> m, const std::string& param, co
      << kernel::construction_order(p.translation, p.rotation_degree, p.translation_degree,
                                    std::max(p.translation_degree2, 0))
      << ", max residual " << p.max_residual();
-  InterpolatedMotion out{kernel::to_double(m), os.str(), kernel::find_poles(m.curve), set, nullptr};
+  InterpolatedMotion out{Motion(kernel::to_double(m)), os.str(), kernel::find_poles(m.curve), set,
+                         nullptr};
   if constexpr (kernel::is_exact_v<Scalar>)
     out.exact_document = motion_document(m, poses_to_json(set));
   return out;
@@ -201,19 +202,19 @@ InterpolatedMotion interpolate(const PoseSet& set, const InterpolateOptions& arg
 
 json InterpolatedMotion::document() const {
   if (!exact_document.is_null()) return exact_document;
-  return motion_document(motion, poses_to_json(input));
+  return motion_document(motion.rational(), poses_to_json(input));
 }
 
 std::string InterpolatedMotion::text() const {
   if (!exact_document.is_null()) return exact_document.dump(1) + "\n";
-  return motion_json_text(motion, &input);
+  return motion_json_text(motion.rational(), &input);
 }
 
 void InterpolatedMotion::save(const std::string& path) const {
   if (!exact_document.is_null())
     write_file_atomic(path, text());
   else
-    write_motion_json(path, motion, &input);
+    write_motion_json(path, motion.rational(), &input);
 }
 
 }  // namespace qmotion

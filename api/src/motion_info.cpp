@@ -1,5 +1,6 @@
 // api/src/motion_info.cpp
 #include <qmotion/api/motion_info.hpp>
+#include <qmotion/api/qspline.hpp>
 #include <sstream>
 
 #ifdef QMOTION_WITH_CGAL
@@ -156,6 +157,35 @@ json motion_eval(const MotionFile& f, double t, const Eigen::Vector3d& x, std::s
     *warning = "violates the Plucker condition at t (relative residual " + std::to_string(pl) +
                "): not a rigid motion";
   return out;
+}
+
+json info_file(const std::string& path, bool exact) {
+  std::string text = read_text_file(path);
+  if (auto f = parse_motion_fast(text, path)) {
+    std::string().swap(text);  // read: its megabytes go before the work
+    return motion_info(*f, exact);
+  }
+  json doc = parse_json(text, path, "method");
+  if (is_qspline_document(doc)) {
+    if (exact)
+      throw Error(Errc::invalid_input, path +
+                                           ": --exact is for rational motions (q-motion files); a "
+                                           "quaternion spline is not rational");
+    return qspline_info(doc, qspline_from_document(doc, path));
+  }
+  return motion_info(parse_motion(std::move(doc), path), exact);
+}
+
+json eval_file(const std::string& path, double t, const Eigen::Vector3d& point,
+               std::string* warning, const std::string& t_text) {
+  std::string text = read_text_file(path);
+  std::optional<MotionFile> fast = parse_motion_fast(text, path, /*with_method=*/false);
+  if (fast) std::string().swap(text);  // read: its megabytes go before the work
+  json doc = fast ? json() : parse_json(text, path, "method");
+  if (!fast && is_qspline_document(doc))
+    return qspline_eval(qspline_from_document(doc, path), t, point, t_text);
+  const MotionFile f = fast ? std::move(*fast) : parse_motion(std::move(doc), path);
+  return motion_eval(f, t, point, warning, t_text);
 }
 
 }  // namespace qmotion

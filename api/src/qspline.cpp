@@ -3,6 +3,7 @@
 #include <qmotion/api/interpolate.hpp>
 #include <qmotion/api/motion_info.hpp>
 #include <qmotion/api/qspline.hpp>
+#include <qmotion/io/atomic_file.hpp>
 #include <qmotion/io/json_number.hpp>
 #include <qmotion/io/motion_json.hpp>
 #include <qmotion/io/units.hpp>
@@ -55,7 +56,7 @@ std::vector<double> tensions(const std::string& text, std::size_t keys) {
 
 }  // namespace
 
-QSplineMotion qspline(const PoseSet& set, const QSplineOptions& o) {
+QSplineResult qspline(const PoseSet& set, const QSplineOptions& o) {
   const auto scheme = qspline_scheme(o.scheme);
   if (!scheme)
     throw Error(Errc::invalid_input,
@@ -74,18 +75,18 @@ QSplineMotion qspline(const PoseSet& set, const QSplineOptions& o) {
   const double a = t.front(), b = t.back();
   const std::vector<double> alpha =
       *scheme == QSplineScheme::quintic ? tensions(o.tension, keys.size()) : std::vector<double>();
-  QSplineMotion out;
+  kernel::QuaternionSpline spline;
   try {  // the kernel's refusals name keys; say which file they are in
     if (*scheme == QSplineScheme::quintic)
-      out.spline = kernel::quintic_spline(keys, positions, t, alpha);
+      spline = kernel::quintic_spline(keys, positions, t, alpha);
     else if (*scheme == QSplineScheme::quartic)
-      out.spline = kernel::quartic_spline(keys, positions, a, b);
+      spline = kernel::quartic_spline(keys, positions, a, b);
     else
-      out.spline = kernel::kks_spline(keys, positions, a, b);
+      spline = kernel::kks_spline(keys, positions, a, b);
   } catch (const Error& e) {
     throw Error(e.code(), set.source + ": " + e.what());
   }
-  const auto& s = out.spline;
+  const auto& s = spline;
   // Uniform constructions: are the rule's parameters where the keys are?
   double off = 0;
   for (std::size_t i = 0; i < t.size(); ++i) off = std::max(off, std::abs(t[i] - s.knots[i]));
@@ -117,8 +118,6 @@ QSplineMotion qspline(const PoseSet& set, const QSplineOptions& o) {
   if (s.scheme == QSplineScheme::kks) method.update(kks_record(s));
   method["input_poses"] = poses_to_json(set);
   doc["method"] = method;
-  out.document = doc;
-  out.units = set.units;
 
   std::ostringstream os;
   os << kernel::to_string(s.scheme) << ", " << s.segments() << " segments";
@@ -128,8 +127,11 @@ QSplineMotion qspline(const PoseSet& set, const QSplineOptions& o) {
   if (moved)
     os << "; keys at uniform knots on [" << a << ", " << b << "] (the " << kernel::to_string(rule)
        << " parameters are not uniform)";
-  out.summary = os.str();
-  return out;
+  return QSplineResult{Motion(std::move(spline), set.units), os.str(), std::move(doc)};
+}
+
+void QSplineResult::save(const std::string& path) const {
+  write_file_atomic(path, document.dump(1) + "\n");
 }
 
 std::vector<double> qspline_key_residuals(const kernel::QuaternionSpline& s) {

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <functional>
 #include <limits>
 #include <map>
 #include <qmotion/api/self_intersection.hpp>
@@ -28,32 +29,11 @@ struct ProfileSample {
 
 }  // namespace
 
-std::string SelfIntersection::ranges() const {
-  std::ostringstream os;
-  os.precision(4);
-  os << "t in [" << t0 << ", " << t1 << "]";
-  for (const auto& e : edges)
-    os << ", profile edge " << e.edge << " v in [" << e.v0 << ", " << e.v1 << "]";
-  return os.str();
-}
+namespace {
 
-SelfIntersection sweep_self_intersections(const kernel::Motion<double>& motion,
-                                          const sweep::Profile<double>& profile, int samples_t) {
-  return sweep_self_intersections(
-      [&](double t, const Eigen::Vector3d& x) {
-        return kernel::apply_point(kernel::evaluate(motion, t), x);
-      },
-      motion.a(), motion.b(), motion.segments(), profile, samples_t);
-}
-
-SelfIntersection sweep_self_intersections(const kernel::QuaternionSpline& motion,
-                                          const sweep::Profile<double>& profile, int samples_t) {
-  return sweep_self_intersections(
-      [&](double t, const Eigen::Vector3d& x) { return motion.place(t, x); }, motion.a(),
-      motion.b(), motion.segments(), profile, samples_t);
-}
-
-SelfIntersection sweep_self_intersections(
+/// The tessellation and CGAL's check for the image place(t, x) of the point x at t in
+/// [a, b], with `segments` the motion's pieces for the default sampling.
+SelfIntersection self_intersections(
     const std::function<Eigen::Vector3d(double, const Eigen::Vector3d&)>& place, double a, double b,
     int segments, const sweep::Profile<double>& profile, int samples_t) {
   SelfIntersection out;
@@ -133,6 +113,14 @@ SelfIntersection sweep_self_intersections(
   for (std::size_t e = 0; e < vr.size(); ++e)
     if (vr[e].first <= vr[e].second) out.edges.push_back({e, vr[e].first, vr[e].second});
   return out;
+}
+
+}  // namespace
+
+SelfIntersection sweep_self_intersections(const Motion& motion,
+                                          const sweep::Profile<double>& profile, int samples_t) {
+  return self_intersections([&](double t, const Eigen::Vector3d& x) { return motion.place(t, x); },
+                            motion.a(), motion.b(), motion.segments(), profile, samples_t);
 }
 
 }  // namespace qmotion

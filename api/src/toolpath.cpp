@@ -63,69 +63,66 @@ void check_options(const ToolpathOptions& o, CamFormat f) {
     throw Error(Errc::invalid_input, "--arc-length is for CSV output (.csv)");
 }
 
-/// The motion as the toolpath needs it: its homogeneous point and axis trajectories (for
-/// a quaternion spline, fitted), the exact placement for measurements, and the fit's error.
+/// The toolpath's trajectories: the homogeneous point and axis trajectories (exact for a
+/// rational motion, fitted for a quaternion spline) and the fit's error. The motion itself
+/// gives the exact placement for measurements.
 struct PathSource {
   kernel::BSpline<Eigen::Vector4d> h, d;
   std::function<Eigen::Vector3d(double)> exact_point;
   std::function<Eigen::Vector3d(double)> exact_velocity;
   double fit_error = 0;
-  std::string units;
   std::vector<double> breaks;  ///< the motion's breakpoints and its continuity inside
   std::vector<int> continuity;
 };
 
-PathSource source(const kernel::Motion<double>& m, const ToolpathOptions& o, double tol) {
-  (void)tol;
-  const auto poles = kernel::find_poles(m.curve);
-  if (!poles.empty())
-    throw Error(Errc::numerical_failure,
-                m.label() + ": the motion has a pole at t = " + std::to_string(poles.front()) +
-                    ": the tool would run to infinity there");
-  const auto h = sweep::trajectory(m, o.point);
-  const auto d =
-      sweep::trajectories(m, {Eigen::Vector4d(0, o.axis(0), o.axis(1), o.axis(2))}).front();
-  const auto dh = kernel::derivative(h);
-  std::vector<double> breaks = h.breakpoints();
-  std::vector<int> continuity;
-  for (std::size_t i = 1; i + 1 < breaks.size(); ++i)
-    continuity.push_back(kernel::continuity_at(h, breaks[i]));
-  return PathSource{h,
-                    d,
-                    [h](double t) {
-                      const Eigen::Vector4d y = kernel::evaluate(h, t);
-                      return Eigen::Vector3d(y.tail<3>() / y(0));
-                    },
-                    [h, dh](double t) { return sweep::detail::point_and_tangent(h, dh, t).second; },
-                    0.0,
-                    m.units,
-                    std::move(breaks),
-                    std::move(continuity)};
-}
-
-PathSource source(const QSplineMotion& m, const ToolpathOptions& o, double tol) {
-  const kernel::QuaternionSpline& s = m.spline;
+PathSource source(const Motion& motion, const ToolpathOptions& o, double tol) {
+  const Eigen::Vector3d x = o.point;
+  const Eigen::Vector4d axis(0, o.axis(0), o.axis(1), o.axis(2));
+  if (motion.is_rational()) {
+    const kernel::Motion<double>& m = motion.rational();
+    const auto poles = kernel::find_poles(m.curve);
+    if (!poles.empty())
+      throw Error(Errc::numerical_failure,
+                  m.label() + ": the motion has a pole at t = " + std::to_string(poles.front()) +
+                      ": the tool would run to infinity there");
+    const auto h = sweep::trajectory(m, x);
+    const auto d = sweep::trajectories(m, {axis}).front();
+    const auto dh = kernel::derivative(h);
+    std::vector<double> breaks = h.breakpoints();
+    std::vector<int> continuity;
+    for (std::size_t i = 1; i + 1 < breaks.size(); ++i)
+      continuity.push_back(kernel::continuity_at(h, breaks[i]));
+    return PathSource{
+        h,
+        d,
+        [h](double t) {
+          const Eigen::Vector4d y = kernel::evaluate(h, t);
+          return Eigen::Vector3d(y.tail<3>() / y(0));
+        },
+        [h, dh](double t) { return sweep::detail::point_and_tangent(h, dh, t).second; },
+        0.0,
+        std::move(breaks),
+        std::move(continuity)};
+  }
   sweep::FrameFitOptions fo;
   fo.tol = 0.1 * tol;
   // The axis tip 100 units out holds the fitted axis within 2e-3 x fo.tol radians.
-  const Eigen::Vector3d tip = o.point + 100 * o.axis.normalized();
+  const Eigen::Vector3d tip = x + 100 * o.axis.normalized();
   sweep::FrameFit fit = [&] {
     try {
-      return sweep::fit_frames([&](double t) { return s.frame(t); }, s.knots,
-                               s.interior_continuity(), {o.point, tip}, fo);
+      return sweep::fit_frames([&](double t) { return motion.frame(t); }, motion.breakpoints(),
+                               motion.continuity(), {x, tip}, fo);
     } catch (const Error& e) {
-      throw Error(e.code(), m.label() + ": " + e.what());
+      throw Error(e.code(), motion.label() + ": " + e.what());
     }
   }();
-  const Eigen::Vector3d x = o.point;
   return PathSource{sweep::apply(fit.matrix, Eigen::Vector4d(1, x(0), x(1), x(2))),
-                    sweep::apply(fit.matrix, Eigen::Vector4d(0, o.axis(0), o.axis(1), o.axis(2))),
-                    [&s, x](double t) { return s.place(t, x); },
-                    [&s, x](double t) { return s.point_velocity(t, x); },
+                    sweep::apply(fit.matrix, axis),
+                    [motion, x](double t) { return motion.place(t, x); },
+                    [motion, x](double t) { return motion.point_velocity(t, x); },
                     fit.max_deviation,
-                    m.units,
-                    s.knots,
-                    s.interior_continuity()};
+                    motion.breakpoints(),
+                    motion.continuity()};
 }
 
 /// The table-tilting A/C angles (degrees) that bring the tool axis k onto machine +Z:
@@ -320,10 +317,10 @@ json Toolpath::report() const {
   return j;
 }
 
-Toolpath toolpath(const AnyMotion& motion, const ToolpathOptions& o) {
+Toolpath toolpath(const Motion& motion, const ToolpathOptions& o) {
   const CamFormat f = cam_format(o.output);
   check_options(o, f);
-  const std::string& munits = units_of(motion);
+  const std::string& munits = motion.units();
   Toolpath tp;
   // The output unit: --units, else the motion's; APT and G-code know only mm and inches,
   // so other units become mm there unless asked for (then refused).
@@ -338,7 +335,7 @@ Toolpath toolpath(const AnyMotion& motion, const ToolpathOptions& o) {
   }
   const double k = unit_factor(munits, tp.units);  // motion unit -> output unit
   const double tol = o.chord_tol / k;              // in the motion's unit
-  const PathSource src = std::visit([&](const auto& m) { return source(m, o, tol); }, motion);
+  const PathSource src = source(motion, o, tol);
   tp.chord_tol = o.chord_tol;
   tp.angle_tol_deg = o.angle_tol_deg;
   tp.feed = o.feed;

@@ -18,7 +18,7 @@ execute_process(COMMAND ${WORK_DIR}/build/consumer ${WORK_DIR}/out RESULT_VARIAB
 if(rc)
   message(FATAL_ERROR "the consumer program failed: ${rc}")
 endif()
-# The installed Python module imports from the prefix (its RPATH finds libqmotion_io) and
+# The installed Python module imports from the prefix (its RPATH finds libqmotion) and
 # does the main job.
 file(GLOB_RECURSE _modules ${WORK_DIR}/prefix/lib/python*/dist-packages/qmotion*.so)
 if(_modules)

@@ -23,11 +23,12 @@ int main(int argc, char** argv) {
     const qm::io::PoseSet poses = qm::io::parse_poses_json(kPoses, "the consumer's poses");
     const qm::InterpolatedMotion made = qm::interpolate(poses, {});
     // The motion value survives its file: save, load, and the same curve comes back.
-    qm::io::save_motion(made.motion, (out / "motion.json").string());
-    const qm::kernel::Motion<double> motion = qm::io::load_motion((out / "motion.json").string());
-    const auto &saved = made.motion.curve.curve.ctrl(), &loaded = motion.curve.curve.ctrl();
-    bool ok = motion.factors && motion.provenance && motion.provenance->poses.size() == 3 &&
-              loaded.size() == saved.size();
+    made.save((out / "motion.json").string());
+    const qm::Motion motion = qm::io::load_motion((out / "motion.json").string());
+    const auto &saved = made.motion.rational().curve.curve.ctrl(),
+               &loaded = motion.rational().curve.curve.ctrl();
+    bool ok = motion.rational().factors && motion.provenance() &&
+              motion.provenance()->poses.size() == 3 && loaded.size() == saved.size();
     for (std::size_t i = 0; ok && i < saved.size(); ++i)
       for (int c = 0; c < 8; ++c) ok = ok && loaded[i][c] == saved[i][c];
     std::cout << "motion.json: " << (ok ? "read back as saved" : "DIFFERS after reading back")
@@ -50,7 +51,7 @@ int main(int argc, char** argv) {
     // fitted within 1e-5 mm and checked against the spline itself.
     qm::QSplineOptions qo;
     qo.scheme = "kks";
-    const qm::io::QSplineMotion q = qm::qspline(poses, qo);
+    const qm::Motion q = qm::qspline(poses, qo).motion;
     qm::ExportOptions qopt;
     qopt.output = (out / "tube_kks.step").string();
     qopt.tol = 1e-5;

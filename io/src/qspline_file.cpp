@@ -122,38 +122,25 @@ kernel::QuaternionSpline qspline_from_document(const json& doc, const std::strin
   return s;
 }
 
-QSplineMotion qspline_motion(const json& doc, const std::string& source) {
-  QSplineMotion m;
-  m.spline = qspline_from_document(doc, source);
-  m.document = doc;
-  m.name = source;
+Motion qspline_motion(const json& doc, const std::string& source) {
+  std::string units = "mm";
   if (doc.contains("units")) {
     if (!doc["units"].is_string())
       throw Error(Errc::invalid_input, source + ": units: expected a unit name such as \"mm\"");
-    m.units = canonical_unit(doc["units"].get<std::string>(), source + ": units");
+    units = canonical_unit(doc["units"].get<std::string>(), source + ": units");
   }
-  m.summary = std::string(kernel::to_string(m.spline.scheme)) + ", " +
-              std::to_string(m.spline.segments()) + " segments";
-  return m;
+  return Motion(qspline_from_document(doc, source), std::move(units), source);
 }
 
-AnyMotion load_any_motion(const std::string& path) {
+Motion load_motion(const std::string& path) {
   std::string text = read_text_file(path);
   if (auto f = parse_motion_fast(text, path)) {
     std::string().swap(text);  // read: its megabytes go before the motion is built
     return to_motion(*f);
   }
   json doc = parse_json(text, path, "method");  // one parse for either kind
-  if (is_qspline_document(doc)) {
-    QSplineMotion m = qspline_motion(doc, path);
-    m.document = json::parse(text, nullptr, false);  // as written: numbers as numbers
-    return m;
-  }
+  if (is_qspline_document(doc)) return qspline_motion(doc, path);
   return to_motion(parse_motion(std::move(doc), path));
-}
-
-const std::string& units_of(const AnyMotion& m) {
-  return std::visit([](const auto& x) -> const std::string& { return x.units; }, m);
 }
 
 }  // namespace qmotion::io

@@ -52,7 +52,7 @@ TEST(ExactCheck, GcdOrderEqualsTheSylvesterRankAndTheWrittenDegree) {
     SCOPED_TRACE(c.poses + " " + c.options.rotation + " " + c.options.translation);
     const io::PoseSet set = io::read_poses(test_data(c.poses));
     const std::string path = scratch("m" + std::to_string(k++) + ".json");
-    io::save_motion(qmotion::interpolate(set, c.options).motion, path);
+    io::save_motion(qmotion::interpolate(set, c.options).motion.rational(), path);
     const auto report = qmotion::check_exact(path);
     EXPECT_TRUE(report["verified"].get<bool>()) << report.dump(1);
     const auto exact = qmotion::interpolate_exact(io::with_quaternion_rotations(set), c.options);
@@ -66,7 +66,7 @@ TEST(ExactCheck, GcdOrderEqualsTheSylvesterRankAndTheWrittenDegree) {
 TEST(ExactCheck, TheOriginsTrajectoryUnderTrHasDegreeM) {
   const io::PoseSet set = io::read_poses(test_data("poses/five_positions.json"));  // m = 4
   const std::string path = scratch("origin.json");
-  io::save_motion(qmotion::interpolate(set, {}).motion, path);
+  io::save_motion(qmotion::interpolate(set, {}).motion.rational(), path);
   const auto origin = qmotion::check_exact(path, Eigen::Vector3d::Zero());
   EXPECT_EQ(origin["order"]["gcd"], 4);
   EXPECT_EQ(origin["order"]["trajectory_degree"], 4);

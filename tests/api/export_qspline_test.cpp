@@ -26,24 +26,24 @@ fs::path scratch(const std::string& name) {
   return d / name;
 }
 
-io::QSplineMotion motion(const std::string& scheme, const std::string& tension = "") {
+qmotion::Motion motion(const std::string& scheme, const std::string& tension = "") {
   qmotion::QSplineOptions o;
   o.scheme = scheme;
   o.tension = tension;
-  return qmotion::qspline(io::read_poses(test_data("helix_10.json")), o);
+  return qmotion::qspline(io::read_poses(test_data("helix_10.json")), o).motion;
 }
 
 /// The image of x under the motion itself (exp/log of its quaternions).
-V3 place(const io::QSplineMotion& m, double t, const V3& x) {
-  return kernel::rotate(m.spline.rotation(t), x) + m.spline.position(t);
+V3 place(const qmotion::Motion& m, double t, const V3& x) {
+  return kernel::rotate(m.spline().rotation(t), x) + m.spline().position(t);
 }
 
 /// Largest distance between the points' trajectories at 401 parameters, their bounding box.
-double diagonal(const io::QSplineMotion& m, const std::vector<V3>& pts) {
+double diagonal(const qmotion::Motion& m, const std::vector<V3>& pts) {
   V3 lo = V3::Constant(HUGE_VAL), hi = -lo;
   for (int i = 0; i <= 400; ++i)
     for (const auto& x : pts) {
-      const V3 y = place(m, m.spline.a() + (m.spline.b() - m.spline.a()) * i / 400, x);
+      const V3 y = place(m, m.spline().a() + (m.spline().b() - m.spline().a()) * i / 400, x);
       lo = lo.cwiseMin(y);
       hi = hi.cwiseMax(y);
     }
@@ -106,7 +106,7 @@ TEST(ExportQSpline, JsonTrajectoryIsTheFittedCurveWithinTheDefaultTolerance) {
   EXPECT_EQ(r.poles, static_cast<int>(curve.points.size()));
   // Evaluated independently at random parameters, and exactly at both ends.
   std::mt19937 rng(3);
-  std::uniform_real_distribution<double> u(m.spline.a(), m.spline.b());
+  std::uniform_real_distribution<double> u(m.spline().a(), m.spline().b());
   double dev = 0;
   for (int i = 0; i < 2000; ++i) {
     const double t = u(rng);
@@ -115,7 +115,7 @@ TEST(ExportQSpline, JsonTrajectoryIsTheFittedCurveWithinTheDefaultTolerance) {
   EXPECT_LE(dev, tol);
   // The fit's check grid (64 per span) sees the worst to about 1% (sweep::kFitMargin).
   EXPECT_LE(dev, *r.approx_deviation * 1.02);
-  for (double t : {m.spline.a(), m.spline.b()})
+  for (double t : {m.spline().a(), m.spline().b()})
     EXPECT_LE((sweep::evaluate(curve, t) - place(m, t, x)).norm(), 1e-12 * diagonal(m, {x}));
   for (double w : curve.weights) EXPECT_EQ(w, 1.0);  // polynomial, not rational
 }
@@ -148,9 +148,10 @@ TEST(ExportQSpline, TheCommonCallsTakeEitherKindOfMotion) {
   const auto q = qmotion::qspline(io::read_poses(test_data("helix_10.json")), qo);
   const std::string file = scratch("quartic_motion.json").string();
   { std::ofstream(file) << q.document.dump(); }
-  const io::AnyMotion any = io::load_any_motion(file);
-  ASSERT_TRUE(std::holds_alternative<io::QSplineMotion>(any));
-  EXPECT_EQ(io::units_of(any), "mm");
+  const qmotion::Motion any = io::load_motion(file);
+  ASSERT_FALSE(any.is_rational());
+  EXPECT_EQ(any.units(), "mm");
+  EXPECT_EQ(any.name(), file);
   qmotion::ExportOptions o;
   o.output = scratch("any.igs").string();
   const auto r = qmotion::export_geometry(any, qmotion::Geometry::trajectory(V3(0, 1, 0)), o);

@@ -26,26 +26,24 @@ fs::path scratch(const std::string& name) {
   return d / name;
 }
 
-io::AnyMotion rational(const std::string& poses, const std::string& form = "") {
+qmotion::Motion rational(const std::string& poses, const std::string& form = "") {
   qmotion::InterpolateOptions o;
   o.form = form;
   return qmotion::interpolate(io::read_poses(test_data(poses)), o).motion;
 }
 
 /// The exact image of x under either kind of motion.
-V3 place(const io::AnyMotion& m, double t, const V3& x) {
-  if (const auto* q = std::get_if<io::QSplineMotion>(&m))
-    return kernel::rotate(q->spline.rotation(t), x) + q->spline.position(t);
-  return kernel::apply_point(kernel::evaluate(std::get<kernel::Motion<double>>(m), t), x);
+V3 place(const qmotion::Motion& m, double t, const V3& x) {
+  if (!m.is_rational()) return kernel::rotate(m.spline().rotation(t), x) + m.spline().position(t);
+  return kernel::apply_point(kernel::evaluate(m.rational(), t), x);
 }
-V3 direction(const io::AnyMotion& m, double t, const V3& a) {
+V3 direction(const qmotion::Motion& m, double t, const V3& a) {
   return place(m, t, a) - place(m, t, V3::Zero());
 }
 
-std::pair<double, double> interval(const io::AnyMotion& m) {
-  if (const auto* q = std::get_if<io::QSplineMotion>(&m)) return {q->spline.a(), q->spline.b()};
-  const auto& r = std::get<kernel::Motion<double>>(m);
-  return {r.a(), r.b()};
+std::pair<double, double> interval(const qmotion::Motion& m) {
+  if (!m.is_rational()) return {m.spline().a(), m.spline().b()};
+  return {m.rational().a(), m.rational().b()};
 }
 
 double segment_distance(const V3& x, const V3& a, const V3& b) {
@@ -71,7 +69,7 @@ double angle_to_arc(const V3& x, const V3& u, const V3& v) {
 
 /// Dense evaluation of every segment against the exact motion (65 points each): the
 /// largest chord distance and axis angle from the blends of the end axes (radians).
-std::pair<double, double> dense_check(const io::AnyMotion& m, const qmotion::Toolpath& tp,
+std::pair<double, double> dense_check(const qmotion::Motion& m, const qmotion::Toolpath& tp,
                                       const V3& x, const V3& a) {
   double chord = 0, angle = 0;
   for (std::size_t i = 0; i + 1 < tp.samples.size(); ++i) {
@@ -89,11 +87,11 @@ std::pair<double, double> dense_check(const io::AnyMotion& m, const qmotion::Too
 TEST(Toolpath, TolerancesHoldOnEveryKindOfMotion) {
   qmotion::QSplineOptions qo;
   qo.scheme = "kks";
-  const std::vector<std::pair<std::string, io::AnyMotion>> motions{
+  const std::vector<std::pair<std::string, qmotion::Motion>> motions{
       {"bezier", rational("poses/five_positions.json")},
       {"bspline", rational("poses/helix_40.json")},
       {"c1", rational("poses/helix_40.json", "c1")},
-      {"kks", qmotion::qspline(io::read_poses(test_data("helix_10.json")), qo)}};
+      {"kks", qmotion::qspline(io::read_poses(test_data("helix_10.json")), qo).motion}};
   const V3 x(1, -2, 3), a = V3(0.2, 0.1, 1).normalized();
   for (const auto& [name, m] : motions)
     for (double tol : {1e-1, 1e-2, 1e-3, 1e-4}) {
@@ -129,7 +127,7 @@ TEST(Toolpath, ACircularArcNeedsAtMostOneAndAHalfTimesTheMinimum) {
     {"t": 0.5, "position": [0, 0, 0], "rotation": {"axis_angle": {"axis": [0, 0, 1], "angle_deg": 60}}},
     {"t": 1, "position": [0, 0, 0], "rotation": {"axis_angle": {"axis": [0, 0, 1], "angle_deg": 120}}}]})";
   qmotion::InterpolateOptions io_opt;
-  const io::AnyMotion m = qmotion::interpolate(io::read_poses(poses), io_opt).motion;
+  const qmotion::Motion m = qmotion::interpolate(io::read_poses(poses), io_opt).motion;
   const double r = 10, theta = 2 * kPi / 3;
   for (double tol : {1e-1, 1e-2, 1e-3, 1e-4}) {
     qmotion::ToolpathOptions o;
@@ -172,7 +170,7 @@ std::vector<double> numbers_after(const std::string& s, char sep) {
 }
 
 TEST(Toolpath, AptGotosLieOnTheTrajectoryWithUnitAxes) {
-  const io::AnyMotion m = rational("poses/helix_40.json");
+  const qmotion::Motion m = rational("poses/helix_40.json");
   qmotion::ToolpathOptions o;
   o.output = scratch("tp.apt").string();
   o.point = V3(0, 0, 2);
@@ -202,7 +200,7 @@ TEST(Toolpath, AptGotosLieOnTheTrajectoryWithUnitAxes) {
 }
 
 TEST(Toolpath, RotaryAcAnglesReproduceTheAxisAndStayContinuous) {
-  const io::AnyMotion m = rational("poses/helix_40.json");
+  const qmotion::Motion m = rational("poses/helix_40.json");
   qmotion::ToolpathOptions o;
   o.output = scratch("tp5.ngc").string();
   o.point = V3(1, 0, 0);
@@ -225,7 +223,7 @@ TEST(Toolpath, RotaryAcAnglesReproduceTheAxisAndStayContinuous) {
 }
 
 TEST(Toolpath, UnitsConvertTheOutputAndTheTolerances) {
-  const io::AnyMotion m = rational("poses/five_positions.json");  // mm
+  const qmotion::Motion m = rational("poses/five_positions.json");  // mm
   qmotion::ToolpathOptions o;
   o.output = scratch("mm.csv").string();
   o.point = V3(1, 2, 3);
@@ -318,12 +316,12 @@ TEST(Toolpath, NurbsBlocksParseBackAsClampedCubicsWithinTheTolerance) {
   std::ofstream(two) << R"({"poses": [
     {"t": 0, "position": [0, 0, 0], "rotation": {"quaternion": [1, 0, 0, 0]}},
     {"t": 1, "position": [0, 0, 4], "rotation": {"axis_angle": {"axis": [0, 0, 1], "angle_deg": 90}}}]})";
-  const std::vector<std::pair<std::string, io::AnyMotion>> motions{
+  const std::vector<std::pair<std::string, qmotion::Motion>> motions{
       {"quarter", qmotion::interpolate(io::read_poses(two), {}).motion},  // a rational cubic path
       {"bezier", rational("poses/five_positions.json")},
       {"bspline", rational("poses/helix_40.json")},
       {"c1", rational("poses/helix_40.json", "c1")},
-      {"kks", qmotion::qspline(io::read_poses(test_data("helix_10.json")), qo)}};
+      {"kks", qmotion::qspline(io::read_poses(test_data("helix_10.json")), qo).motion}};
   const V3 x(1, -2, 3);
   for (const auto& [name, m] : motions)
     for (double tol : {1e-1, 1e-2, 1e-3, 1e-4}) {
@@ -390,7 +388,7 @@ TEST(Toolpath, NurbsBlocksParseBackAsClampedCubicsWithinTheTolerance) {
 }
 
 TEST(Toolpath, BadOptionsAreRefusedAndWriteNothing) {
-  const io::AnyMotion m = rational("poses/five_positions.json");
+  const qmotion::Motion m = rational("poses/five_positions.json");
   const std::string out = scratch("bad.ngc").string();
   auto with = [&](auto change) {
     qmotion::ToolpathOptions o;
@@ -437,7 +435,7 @@ TEST(Toolpath, BadOptionsAreRefusedAndWriteNothing) {
     {"t": 0, "position": [0, 0, 0], "rotation": {"quaternion": [1, 0, 0, 0]}},
     {"t": 1, "position": [5, 0, 0], "rotation": {"axis_angle": {"axis": [0, 0, 1], "angle_deg": 40}}},
     {"t": 2, "position": [9, 2, 0], "rotation": {"axis_angle": {"axis": [0, 0, 1], "angle_deg": 80}}}]})";
-  const io::AnyMotion spin = qmotion::interpolate(io::read_poses(poses), {}).motion;
+  const qmotion::Motion spin = qmotion::interpolate(io::read_poses(poses), {}).motion;
   qmotion::ToolpathOptions o;
   o.output = out;
   o.chord_tol = 1e-2;

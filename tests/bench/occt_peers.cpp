@@ -785,7 +785,8 @@ kernel::Pose<double> pose(double angle_deg, const V3& axis, const V3& position) 
 kernel::Motion<double> demo_motion(const std::string& data) {
   qmotion::InterpolateOptions o;
   o.form = "bezier";
-  return qmotion::interpolate(io::read_poses(data + "/poses/five_positions.json"), o).motion;
+  return qmotion::interpolate(io::read_poses(data + "/poses/five_positions.json"), o)
+      .motion.rational();
 }
 
 /// Four poses turning 140 degrees in all about a tilted axis: elliptic (cubic) rotation,

@@ -10,6 +10,7 @@
 #include <qmotion/io/motion_json.hpp>
 #include <qmotion/io/occt.hpp>
 #include <qmotion/io/poses.hpp>
+#include <qmotion/io/qspline_file.hpp>
 #include <qmotion/kernel/interpolation.hpp>
 #include <qmotion/kernel/parametrization.hpp>
 #include <qmotion/sweep/surface.hpp>
@@ -47,7 +48,7 @@ std::string motion_file(const std::string& poses, int count, kernel::Translation
 std::string test_data(const std::string& rel) { return std::string(QMOTION_TEST_DATA) + "/" + rel; }
 
 sweep::NurbsSurface<double> surface_from_file(const std::string& path) {
-  return sweep::to_nurbs(sweep::kinematic_surface(io::load_motion(path), kParabola));
+  return sweep::to_nurbs(sweep::kinematic_surface(io::load_motion(path).rational(), kParabola));
 }
 
 void BM_DemoMotionFileToStep(benchmark::State& st) {  // five poses, elliptic + TR: 12 x 2
@@ -70,7 +71,7 @@ BENCHMARK(BM_Degree16x2MotionFileToStep)->Unit(benchmark::kMillisecond);
 void BM_Degree16x2SurfaceBuildOnly(benchmark::State& st) {
   const std::string path = motion_file(test_data("poses/helix_40.json"), 9,
                                        kernel::TranslationMethod::minimal, "bench_16b.json");
-  const auto m = io::load_motion(path);
+  const kernel::Motion<double> m = io::load_motion(path).rational();
   for (auto _ : st) benchmark::DoNotOptimize(sweep::kinematic_nurbs(m, kParabola));
 }
 BENCHMARK(BM_Degree16x2SurfaceBuildOnly)->Unit(benchmark::kMicrosecond);

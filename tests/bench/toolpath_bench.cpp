@@ -18,7 +18,7 @@ const qm::kernel::Motion<double>& helix() {
   static const qm::kernel::Motion<double> m =
       qm::interpolate(qm::io::read_poses(std::string(QMOTION_TEST_DATA) + "/poses/helix_40.json"),
                       {})
-          .motion;
+          .motion.rational();
   return m;
 }
 
@@ -43,7 +43,7 @@ BENCHMARK(BM_Sampler)->Arg(1)->Arg(2)->Arg(3)->Arg(4)->Unit(benchmark::kMillisec
 
 void BM_Write10k(benchmark::State& state) {
   const char* ext[] = {".apt", ".csv", ".ngc"};
-  const qm::io::AnyMotion m = helix();
+  const qm::Motion m = helix();
   qm::ToolpathOptions o;
   o.output = (std::filesystem::temp_directory_path() /
               (std::string("qmotion_bench_tp") + ext[state.range(0)]))
@@ -64,7 +64,7 @@ BENCHMARK(BM_Write10k)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
 /// G-code, against the linear toolpath at the same chord tolerance (angle tolerance 89
 /// degrees, so that only the chord decides).
 void BM_Nurbs(benchmark::State& state) {
-  const qm::io::AnyMotion m = helix();
+  const qm::Motion m = helix();
   qm::ToolpathOptions o;
   o.output = (std::filesystem::temp_directory_path() / "qmotion_bench_tpn.ngc").string();
   o.point = Eigen::Vector3d(1, 0, 2);

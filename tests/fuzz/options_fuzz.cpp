@@ -10,7 +10,9 @@
 #include <filesystem>
 #include <qmotion/api/export.hpp>
 #include <qmotion/api/interpolate.hpp>
+#ifdef QMOTION_WITH_CGAL
 #include <qmotion/io/exact_number.hpp>
+#endif
 #include <qmotion/io/profiles.hpp>
 #include <qmotion/render/render.hpp>
 #include <sstream>
@@ -38,7 +40,7 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
   g_motion = (dir / "motion.json").string();
   g_curve = (dir / "curve.json").string();
   const auto made = qmotion::interpolate(io::parse_poses_json(kPoses, "poses"), {});
-  io::save_motion(made.motion, g_motion);
+  made.save(g_motion);
   qmotion::ExportOptions opt;
   opt.output = g_curve;
   qmotion::export_geometry(made.motion, qmotion::Geometry::trajectory(Eigen::Vector3d(1, 2, 3)),
@@ -77,7 +79,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     default:
       fuzz::accept_refusals([&] {
         const io::Number n = io::parse_number_text(rest, "--t");
+#ifdef QMOTION_WITH_CGAL
         (void)io::exact_from_text(n.text.str());
+#endif
       });
   }
   return 0;

@@ -15,7 +15,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const auto poses = io::to_poses_double(set);
     (void)io::poses_to_json(set).dump();
     (void)io::poses_to_json(poses, set.units).dump();
+#ifdef QMOTION_WITH_CGAL
     fuzz::accept_refusals([&] { (void)io::to_poses_exact(set); });
+#endif
   });
   return 0;
 }

@@ -34,7 +34,7 @@ fs::path scratch(const std::string& name) {
 const kernel::Motion<double>& coil() {
   static const kernel::Motion<double> m =
       qmotion::interpolate(io::read_poses(test_data("self_intersection/coil_open.json")), {})
-          .motion;
+          .motion.rational();
   return m;
 }
 

@@ -213,6 +213,7 @@ TYPED_TEST(BernsteinTest, ExactDivisionByAKnownFactor) {
   EXPECT_THROW(kernel::divide_exact(p, f), Error);
 }
 
+#ifdef QMOTION_WITH_CGAL
 TEST(BernsteinRational, ExactDivisionAndReductionAreExact) {
   using S = Rational;
   std::mt19937 g(12);
@@ -223,6 +224,7 @@ TEST(BernsteinRational, ExactDivisionAndReductionAreExact) {
   ASSERT_EQ(r.degree(), 7);
   for (int i = 0; i <= 7; ++i) EXPECT_EQ(r[i], a[i]);
 }
+#endif
 
 TEST(BernsteinDouble, RefusesBadConstruction) {
   EXPECT_THROW(Bernstein<double>(std::vector<double>{}), Error);

@@ -2,7 +2,9 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#ifdef QMOTION_WITH_CGAL
 #include <qmotion/io/exact_number.hpp>
+#endif
 #include <qmotion/io/poses.hpp>
 #include <qmotion/kernel/interpolation.hpp>
 #include <qmotion/kernel/order.hpp>
@@ -182,6 +184,7 @@ TEST(Interpolation, DegreesAndOrdersAsThePaperStates) {
   EXPECT_EQ(kernel::interpolate_bezier(p, t, o).curve.degree(), 6);
 }
 
+#ifdef QMOTION_WITH_CGAL
 /// The orders the constructions guarantee, verified exactly (rational data has exact
 /// common factors; in double they are only approximate).
 TEST(Interpolation, OrdersAreExactOnRationalData) {
@@ -206,7 +209,9 @@ TEST(Interpolation, OrdersAreExactOnRationalData) {
               m);
   }
 }
+#endif
 
+#ifdef QMOTION_WITH_CGAL
 TEST(Interpolation, ExactModeIsExactAndAgreesWithDouble) {
   const auto set = io::read_poses(test_data("poses/rational_exact.json"));
   const auto Pe = io::to_poses_exact(set);
@@ -240,6 +245,7 @@ TEST(Interpolation, ExactModeIsExactAndAgreesWithDouble) {
                       1e-12 * scale);
     }
 }
+#endif
 
 Quaternion<double> unit(double angle, const Eigen::Vector3d& axis) {
   return kernel::from_axis_angle(axis, angle);
@@ -473,6 +479,7 @@ TEST(Interpolation, RefusalsAreClear) {
                                    options(RotationMethod::elliptic, TranslationMethod::tr));
       },
       Errc::numerical_failure, {"ill-conditioned", "--form bspline"}));
+#ifdef QMOTION_WITH_CGAL
   // The same inaccessible pose exactly.
   const auto Pe = io::to_poses_exact(io::read_poses(d + "projective_inaccessible.json"));
   std::vector<Rational> te;
@@ -483,6 +490,7 @@ TEST(Interpolation, RefusalsAreClear) {
                                    options(RotationMethod::projective, TranslationMethod::tr));
       },
       Errc::numerical_failure, {"pose 2", "inaccessible"}));
+#endif
 }
 
 }  // namespace

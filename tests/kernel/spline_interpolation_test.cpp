@@ -168,6 +168,7 @@ TEST(SplineMotion, AlgorithmTwoIsLocal) {
             kernel::evaluate(d.curve, 0.5 * (t2[0] + t2[1])));
 }
 
+#ifdef QMOTION_WITH_CGAL
 TEST(SplineMotion, ExactBSplineMotionsAreExact) {
   const auto set = io::read_poses(test_data("poses/rational_exact.json"));
   const auto P = io::to_poses_exact(set);
@@ -184,6 +185,7 @@ TEST(SplineMotion, ExactBSplineMotionsAreExact) {
       for (double x : r.provenance->residuals) EXPECT_EQ(x, 0.0);
     }
 }
+#endif
 
 TEST(SplineMotion, ExportedGeometryIsExact) {
   std::vector<double> t;

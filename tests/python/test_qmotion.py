@@ -210,10 +210,13 @@ def test_qspline_is_the_clis_and_does_the_whole_job(tmp_path, scheme, tension, f
     assert q.scheme == scheme
     assert q.to_dict() == json.load(open(path))
     loaded = qmotion.load(str(path))
-    assert isinstance(loaded, qmotion.QSpline) and loaded.knots == q.knots
+    assert type(loaded) is qmotion.Motion and np.array_equal(loaded.knots, q.knots)
+    assert (loaded.kind, loaded.scheme, loaded.degree) == ("quaternion-spline", scheme, None)
     info = q.info()
     assert max(info["interpolation_residual"]) <= 1e-10
-    assert len(q.evaluate(q.param_range[0], point=[1, 0, 0])["angular_velocity"]) == 3
+    assert len(q.eval(q.param_range[0], point=[1, 0, 0])["angular_velocity"]) == 3
+    with pytest.raises(ValueError, match="not rational"):
+        q.control_points
     # The geometry is fitted within the tolerance and checked against the spline itself.
     curve = qmotion.trajectory(q, [1, 2, 3], tol=1e-6)
     assert curve.degree == 5
@@ -406,3 +409,59 @@ def test_render_and_plot_as_calls(tmp_path):
     with pytest.raises(ValueError, match="--view sideways"):
         qmotion.render(m, str(tmp_path / "g.svg"), view="sideways")
     assert not (tmp_path / "g.svg").exists()
+
+
+def rotation_of(rotation):
+    """The rotation matrix of a pose file's quaternion or axis_angle, written out here."""
+    if "quaternion" in rotation:
+        w, x, y, z = np.array(rotation["quaternion"]) / np.linalg.norm(rotation["quaternion"])
+    else:
+        axis = np.array(rotation["axis_angle"]["axis"], dtype=float)
+        half = np.radians(rotation["axis_angle"]["angle_deg"]) / 2
+        w, (x, y, z) = np.cos(half), np.sin(half) * axis / np.linalg.norm(axis)
+    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+                     [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+                     [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
+
+
+@pytest.mark.parametrize("make", [
+    lambda p: qmotion.interpolate(p, form="bezier"),
+    lambda p: qmotion.interpolate(p, form="bspline"),
+    lambda p: qmotion.interpolate(p, form="c1"),
+    lambda p: qmotion.qspline(p, "kks"),
+    lambda p: qmotion.qspline(p, "quintic"),
+    lambda p: qmotion.qspline(p, "quartic")], ids=["bezier", "bspline", "c1", "kks", "quintic",
+                                                    "quartic"])
+def test_one_motion_class_answers_the_same_calls_for_both_kinds(make):
+    poses = json.load(open(data("poses/five_positions.json")))["poses"]
+    m = make(data("poses/five_positions.json"))
+    assert type(m) is qmotion.Motion
+    keys = m.key_parameters
+    assert len(keys) == len(poses) and keys[0] == m.param_range[0] and keys[-1] == m.param_range[1]
+    x = np.array([3.0, -2.0, 5.0])
+    for t, pose in zip(keys, poses):  # interpolation at every pose, through frame and place
+        F = m.frame(t)
+        assert F.shape == (4, 4) and F[0, 0] == 1 and not F[0, 1:].any()
+        R = rotation_of(pose["rotation"])
+        assert np.allclose(F[1:, 1:], R, atol=1e-9)
+        assert np.allclose(F[1:, 0], pose["position"], atol=1e-9)
+        assert np.allclose(m.place(t, x), R @ x + pose["position"], atol=1e-9)
+    a, b = m.param_range
+    assert m.breakpoints[0] == a and m.breakpoints[-1] == b
+    assert len(m.continuity) == len(m.breakpoints) - 2
+    h = 1e-6 * (b - a)
+    for t in np.linspace(a + 0.013 * (b - a), b - 0.017 * (b - a), 7):
+        # Velocities against central differences of the placement and of the frame.
+        fd = (np.array(m.place(t + h, x)) - np.array(m.place(t - h, x))) / (2 * h)
+        assert np.allclose(m.point_velocity(t, x), fd, rtol=1e-5, atol=1e-6 * np.abs(fd).max())
+        R0, R1, Rt = m.frame(t - h)[1:, 1:], m.frame(t + h)[1:, 1:], m.frame(t)[1:, 1:]
+        W = (R1 - R0) / (2 * h) @ Rt.T  # skew(omega)
+        w = np.array([W[2, 1], W[0, 2], W[1, 0]])
+        assert np.allclose(m.angular_velocity(t), w, rtol=1e-5, atol=1e-7 * max(1, np.abs(w).max()))
+    if m.rational:
+        doc = m.to_dict()
+        assert m.control_points.shape == (len(doc["control_points"]), 8)
+        assert np.array_equal(m.control_points, np.array(doc["control_points"]))
+        assert m.degree == doc["degree"] and m.kind == "q-motion" and m.scheme is None
+    else:
+        assert m.degree is None and m.kind == "quaternion-spline"

@@ -24,7 +24,7 @@ using Eigen::Vector3d;
 kernel::Motion<double> interpolated(const std::string& poses, const std::string& form = "") {
   qmotion::InterpolateOptions o;
   o.form = form;
-  return qmotion::interpolate(io::read_poses(test::test_data(poses)), o).motion;
+  return qmotion::interpolate(io::read_poses(test::test_data(poses)), o).motion.rational();
 }
 
 /// The rigid map of a q-motion at t, through the kernel's own point map.
@@ -62,7 +62,7 @@ TEST(Plot, SpeedAndAngularSpeedAreTheMotionsDerivatives) {
        {std::pair<std::string, std::string>{"poses/five_positions.json", ""},
         {"poses/helix_40.json", "bspline"}}) {
     const kernel::Motion<double> m = interpolated(poses, form);
-    const io::AnyMotion any(m);
+    const qmotion::Motion any(m);
     render::PlotOptions o;
     o.point = Vector3d(3, -2, 5);
     o.samples = 200;
@@ -98,7 +98,7 @@ TEST(Plot, CurvatureOfARotationAboutOneAxisIsTheCircles) {
       {"t":0.7,"position":[0,0,0],"rotation":{"axis_angle":{"axis":[0,0,1],"angle_deg":110}}},
       {"t":1,"position":[0,0,0],"rotation":{"axis_angle":{"axis":[0,0,1],"angle_deg":150}}}]})",
       "coaxial");
-  const io::AnyMotion m(qmotion::interpolate(set, {}).motion);
+  const qmotion::Motion m(qmotion::interpolate(set, {}).motion);
   render::PlotOptions o;
   o.quantity = render::Quantity::curvature;
   o.point = Vector3d(4, 0, 7);  // radius 4 about z
@@ -113,16 +113,16 @@ TEST(Plot, CurvatureOfARotationAboutOneAxisIsTheCircles) {
 TEST(Plot, QuaternionSplineSpeedMatchesItsPositions) {
   qmotion::QSplineOptions qo;
   qo.scheme = "quartic";
-  const io::QSplineMotion q =
-      qmotion::qspline(io::read_poses(test::test_data("poses/five_positions.json")), qo);
+  const qmotion::Motion q =
+      qmotion::qspline(io::read_poses(test::test_data("poses/five_positions.json")), qo).motion;
   render::PlotOptions o;
   o.point = Vector3d(1, 2, 3);
-  const render::PlotSeries s = render::sample_quantity(io::AnyMotion(q), o);
+  const render::PlotSeries s = render::sample_quantity(q, o);
   const double h = 1e-6;
   for (std::size_t i = 1; i + 1 < s.t.size(); i += 11) {
     const double t = s.t[i];
     const double fd =
-        (q.spline.place(t + h, o.point) - q.spline.place(t - h, o.point)).norm() / (2 * h);
+        (q.spline().place(t + h, o.point) - q.spline().place(t - h, o.point)).norm() / (2 * h);
     EXPECT_NEAR(s.value[i], fd, 1e-5 * fd) << t;
   }
 }
@@ -135,7 +135,7 @@ TEST(Render, SvgDrawsWhatTheResultCounts) {
   o.profile = sweep::single_edge(sweep::NurbsCurve<double>{
       2, {0, 0, 0, 1, 1, 1}, {{-10, 0, 10}, {0, 0, -10}, {10, 0, 10}}, {1, 1, 1}});
   render::RenderResult r;
-  const std::string svg = render::render_figure(io::AnyMotion(m), o, &r).svg();
+  const std::string svg = render::render_figure(qmotion::Motion(m), o, &r).svg();
   EXPECT_EQ(r.trajectories, 3);
   EXPECT_EQ(r.object_poses, 5);
   EXPECT_EQ(r.key_poses, 5);
@@ -176,7 +176,7 @@ TEST(Render, SvgDrawsWhatTheResultCounts) {
 }
 
 TEST(Render, ObjectsFromAMeshOrAProfileArePlacedAtEveryInstant) {
-  const io::AnyMotion m(interpolated("poses/five_positions.json"));
+  const qmotion::Motion m(interpolated("poses/five_positions.json"));
   const fs::path stl = scratch("tetrahedron.stl");
   {
     std::ofstream f(stl);
@@ -222,7 +222,7 @@ TEST(Render, ManyKeysAreMarkedWithoutSmearingTheFigure) {
   doc += "]}";
   qmotion::InterpolateOptions io_opt;
   io_opt.form = "bspline";
-  const io::AnyMotion m(qmotion::interpolate(io::parse_poses_json(doc, "helix"), io_opt).motion);
+  const qmotion::Motion m(qmotion::interpolate(io::parse_poses_json(doc, "helix"), io_opt).motion);
   render::RenderOptions o;
   render::RenderResult r;
   const std::string svg = render::render_figure(m, o, &r).svg();
@@ -241,7 +241,7 @@ TEST(Render, PngHasItsSizeAndIsNotBlank) {
   o.width = 420;
   o.height = 300;
   fs::remove(o.output);
-  render::render(io::AnyMotion(m), o);
+  render::render(qmotion::Motion(m), o);
   cairo_surface_t* s = cairo_image_surface_create_from_png(o.output.c_str());
   ASSERT_EQ(cairo_surface_status(s), CAIRO_STATUS_SUCCESS);
   EXPECT_EQ(cairo_image_surface_get_width(s), 420);
@@ -263,7 +263,7 @@ TEST(Render, PngHasItsSizeAndIsNotBlank) {
   po.output = scratch("plot.png").string();
   po.width = 500;
   po.height = 260;
-  render::plot({io::AnyMotion(m)}, po);
+  render::plot({qmotion::Motion(m)}, po);
   s = cairo_image_surface_create_from_png(po.output.c_str());
   ASSERT_EQ(cairo_surface_status(s), CAIRO_STATUS_SUCCESS);
   EXPECT_EQ(cairo_image_surface_get_width(s), 500);
@@ -272,7 +272,7 @@ TEST(Render, PngHasItsSizeAndIsNotBlank) {
 }
 
 TEST(Render, BadOptionsAreRefusedByName) {
-  const io::AnyMotion m(interpolated("poses/five_positions.json"));
+  const qmotion::Motion m(interpolated("poses/five_positions.json"));
   auto with = [&](auto edit) {
     render::RenderOptions o;
     o.output = scratch("bad.svg").string();
@@ -318,7 +318,7 @@ TEST(Render, ViewsLookAlongTheirAxes) {
   EXPECT_TRUE(render::parse_view("iso").isApprox(Vector3d(1, 1, 1).normalized()));
   EXPECT_TRUE(render::parse_view("0,0,-2").isApprox(Vector3d(0, 0, -1)));
   // Top view: x to the right, y up the page.
-  const io::AnyMotion m(interpolated("poses/five_positions.json"));
+  const qmotion::Motion m(interpolated("poses/five_positions.json"));
   render::RenderOptions o;
   o.view = "top";
   render::RenderResult r;

@@ -117,6 +117,7 @@ TEST(Trajectory, ExactAtItsMinimalDegreeForEveryMethod) {
     }
 }
 
+#ifdef QMOTION_WITH_CGAL
 TEST(Trajectory, ExactlyOnTheMotionInRationalArithmetic) {
   const auto P = io::to_poses_exact(io::read_poses(test_data("poses/rational_exact.json")));
   std::vector<Rational> t;
@@ -140,7 +141,9 @@ TEST(Trajectory, ExactlyOnTheMotionInRationalArithmetic) {
     }
   }
 }
+#endif
 
+#ifdef QMOTION_WITH_CGAL
 /// The B-spline motion through the exact poses P at t, rotation factor of degree k,
 /// translation factor of degree 2.
 auto exact_spline(const std::vector<kernel::Pose<Rational>>& P, const std::vector<Rational>& t,
@@ -151,7 +154,9 @@ auto exact_spline(const std::vector<kernel::Pose<Rational>>& P, const std::vecto
   o.l = 2;
   return kernel::interpolate_bspline(P, t, o);
 }
+#endif
 
+#ifdef QMOTION_WITH_CGAL
 TEST(Trajectory, SplineMatrixIsTheMotionWithTheFactorsContinuity) {
   // The matrix spline of a B-spline motion's factors (built span by span, assembled once) is
   // the motion's matrix at every parameter, exactly, and at each interior breakpoint exactly
@@ -182,7 +187,9 @@ TEST(Trajectory, SplineMatrixIsTheMotionWithTheFactorsContinuity) {
       }
     }
 }
+#endif
 
+#ifdef QMOTION_WITH_CGAL
 TEST(Trajectory, PointsMappedSpanBySpanAreTheMatrixSplinesImages) {
   // trajectories_from_factors applies each span's matrix piece to the points as it is made,
   // without the matrix spline: in rational arithmetic its poles and knots are M X's exactly.
@@ -218,7 +225,9 @@ TEST(Trajectory, PointsMappedSpanBySpanAreTheMatrixSplinesImages) {
                   std::string("Bezier ") + kernel::to_string(tr));
   }
 }
+#endif
 
+#ifdef QMOTION_WITH_CGAL
 TEST(KinematicSurface, ItsColumnsAreTheProfilePolesTrajectoriesExactly) {
   // With the factors the surface is made from the matrix spline M once (pole (i, j) =
   // M_i X_j): in rational arithmetic each column is trajectories_from_factors' spline of
@@ -253,6 +262,7 @@ TEST(KinematicSurface, ItsColumnsAreTheProfilePolesTrajectoriesExactly) {
       EXPECT_EQ(s.degree_v, profile.degree);
     }
 }
+#endif
 
 std::vector<std::pair<std::string, sweep::NurbsCurve<double>>> profiles() {
   return {
@@ -381,6 +391,7 @@ TEST(PositiveWeights, AMotionWithAPoleCannotBeMadePositive) {
                            Errc::numerical_failure, {"pole"}));
 }
 
+#ifdef QMOTION_WITH_CGAL
 TEST(KinematicSurface, KinematicNurbsIsTheSameSurfaceWhereWeightsAreRefinedAndExactly) {
   // kinematic_nurbs as to_nurbs(kinematic_surface) (see ExactForEveryMethodAndProfileKind)
   // with negative Bernstein weights refined away, and in rational arithmetic.
@@ -402,7 +413,9 @@ TEST(KinematicSurface, KinematicNurbsIsTheSameSurfaceWhereWeightsAreRefinedAndEx
                         sweep::to_nurbs(sweep::kinematic_surface(r, prof)));
   }
 }
+#endif
 
+#ifdef QMOTION_WITH_CGAL
 TEST(Profiles, TheRationalCircleIsExact) {
   const auto c = sweep::circle(Rational(7));
   const auto h = sweep::to_homogeneous(c);
@@ -424,6 +437,7 @@ TEST(Profiles, TheRationalCircleIsExact) {
   EXPECT_THROW(sweep::arc(3.0, 10.0, 10.0), Error);
   EXPECT_THROW(sweep::circle(-1.0), Error);
 }
+#endif
 
 TEST(Approximation, LowerDegreeWithinTheMeasuredTolerance) {
   const auto P = io::to_poses_double(io::read_poses(test_data("poses/five_positions.json")));

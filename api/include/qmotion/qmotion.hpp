@@ -23,6 +23,7 @@
 #include <qmotion/io/poses.hpp>
 #include <qmotion/io/profiles.hpp>
 #include <qmotion/io/progress.hpp>
+#include <qmotion/io/qspline_file.hpp>
 #include <qmotion/io/units.hpp>
 #include <qmotion/kernel/dual_quaternion.hpp>
 #include <qmotion/kernel/error.hpp>
@@ -34,6 +35,7 @@
 #include <qmotion/kernel/qspline.hpp>
 #include <qmotion/kernel/quaternion.hpp>
 #include <qmotion/kernel/spline_interpolation.hpp>
+#include <qmotion/motion.hpp>
 #include <qmotion/render/canvas.hpp>
 #include <qmotion/render/render.hpp>
 #include <qmotion/sweep/factors.hpp>

@@ -5,11 +5,11 @@
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 #include <optional>
-#include <qmotion/api/qspline.hpp>
 #include <qmotion/api/self_intersection.hpp>
 #include <qmotion/io/mesh.hpp>
 #include <qmotion/io/motion_json.hpp>
 #include <qmotion/io/point_text.hpp>
+#include <qmotion/motion.hpp>
 #include <qmotion/sweep/factors.hpp>
 #include <qmotion/sweep/nurbs.hpp>
 #include <qmotion/sweep/profiles.hpp>
@@ -63,12 +63,22 @@ struct ExportResult {
   std::optional<io::Mesh> mesh;
 };
 
+/// Both kinds of motion go through the same calls. A rational motion's geometry is exact;
+/// a quaternion spline's (docs/geometry.md) is approximated: its rigid maps [R(t) | p(t)] are
+/// fitted once by a matrix B-spline of degree opt.max_degree (default kQSplineFitDegree) on
+/// one knot vector holding the keys' knots (sweep::fit_frames), until the trajectories of the
+/// point, or of every control point of the profile, are within opt.tol (default 1e-6 of
+/// their bounding-box diagonal) on a dense grid; the surfaces, convex combinations of those,
+/// are within it too. ExportResult and the JSON's "approximation" record the tolerance, the
+/// measured deviation, the degree, the poles and the spans. --solid checks the fitted surface
+/// for back-sweep and takes the volume from the motion itself. Errc::numerical_failure when
+/// the fit cannot reach the tolerance (65536 spans).
+
 /// The trajectory of the point as NURBS, exact at its minimal degree with positive weights
 /// (or approximated above opt.max_degree within opt.tol), in opt.units (default the
 /// motion's); nothing is written (opt.output is ignored). `result`, when given, receives
 /// degree, continuity, pole count, units and any measured deviation.
-sweep::NurbsCurve<double> trajectory_nurbs(const kernel::Motion<double>& lm,
-                                           const Eigen::Vector3d& point,
+sweep::NurbsCurve<double> trajectory_nurbs(const Motion& motion, const Eigen::Vector3d& point,
                                            const ExportOptions& opt = {},
                                            ExportResult* result = nullptr);
 
@@ -76,22 +86,23 @@ sweep::NurbsCurve<double> trajectory_nurbs(const kernel::Motion<double>& lm,
 /// exact, or approximated above opt.max_degree), in opt.units; with opt.solid the profile
 /// is checked as for export (closed, planar, no back-sweep) and result->volume is set.
 /// Nothing is written.
-std::vector<sweep::NurbsSurface<double>> sweep_nurbs(const kernel::Motion<double>& lm,
+std::vector<sweep::NurbsSurface<double>> sweep_nurbs(const Motion& motion,
                                                      const sweep::Profile<double>& profile,
                                                      const ExportOptions& opt = {},
                                                      ExportResult* result = nullptr);
 
-ExportResult export_trajectory(const kernel::Motion<double>& lm, const Eigen::Vector3d& point,
+ExportResult export_trajectory(const Motion& motion, const Eigen::Vector3d& point,
                                const ExportOptions& opt);
-ExportResult export_surface(const kernel::Motion<double>& lm, const sweep::Profile<double>& profile,
+ExportResult export_surface(const Motion& motion, const sweep::Profile<double>& profile,
                             const std::string& profile_name, const ExportOptions& opt);
 
 /// The exactness check: the file's NURBS (read back through OpenCASCADE for STEP/IGES)
 /// against the motion applied to the profile (surfaces) or to the point (curves), on a
 /// grid x grid lattice plus 400 random parameters per face. Every face is matched to the
 /// profile edge it sweeps; planar faces (a solid's caps) are counted. Deviations are in
-/// the unit the file declares. JSON report.
-nlohmann::json check_geometry(const std::string& file, const kernel::Motion<double>& lm,
+/// the unit the file declares. A quaternion spline is checked against the spline itself (exp
+/// and log of its quaternions), not against the fit. JSON report.
+nlohmann::json check_geometry(const std::string& file, const Motion& motion,
                               const std::optional<sweep::Profile<double>>& profile,
                               const std::optional<Eigen::Vector3d>& point, int grid = 41);
 
@@ -110,48 +121,10 @@ struct Geometry {
 
 /// export_trajectory or export_surface, as the geometry says; Errc::invalid_input unless
 /// exactly one of point and profile is set.
-ExportResult export_geometry(const kernel::Motion<double>& motion, const Geometry& geometry,
+ExportResult export_geometry(const Motion& motion, const Geometry& geometry,
                              const ExportOptions& opt);
 /// check_geometry for the geometry's point or profile.
-nlohmann::json check(const std::string& file, const kernel::Motion<double>& motion,
-                     const Geometry& geometry, int grid = 41);
-
-/// Non-rational motions (docs/geometry.md): the same calls for a quaternion-spline motion. Its
-/// geometry is approximated: the rigid maps [R(t) | p(t)] are fitted once by a matrix
-/// B-spline of degree opt.max_degree (default kQSplineFitDegree) on one knot vector holding
-/// the keys' knots (sweep::fit_frames), until the trajectories of the point, or of every
-/// control point of the profile, are within opt.tol (default 1e-6 of their bounding-box
-/// diagonal) on a dense grid; the surfaces, convex combinations of those, are within it
-/// too. ExportResult and the JSON's "approximation" record the tolerance, the measured
-/// deviation, the degree, the poles and the spans. --solid checks the fitted surface for
-/// back-sweep and takes the volume from the motion itself. Errc::numerical_failure when the
-/// fit cannot reach the tolerance (65536 spans).
-sweep::NurbsCurve<double> trajectory_nurbs(const io::QSplineMotion& motion,
-                                           const Eigen::Vector3d& point,
-                                           const ExportOptions& opt = {},
-                                           ExportResult* result = nullptr);
-std::vector<sweep::NurbsSurface<double>> sweep_nurbs(const io::QSplineMotion& motion,
-                                                     const sweep::Profile<double>& profile,
-                                                     const ExportOptions& opt = {},
-                                                     ExportResult* result = nullptr);
-ExportResult export_trajectory(const io::QSplineMotion& motion, const Eigen::Vector3d& point,
-                               const ExportOptions& opt);
-ExportResult export_surface(const io::QSplineMotion& motion, const sweep::Profile<double>& profile,
-                            const std::string& profile_name, const ExportOptions& opt);
-ExportResult export_geometry(const io::QSplineMotion& motion, const Geometry& geometry,
-                             const ExportOptions& opt);
-/// check_geometry against the quaternion spline itself (exp and log of its quaternions), not
-/// against the fit: the deviation is the written file's from the exact non-rational motion.
-nlohmann::json check_geometry(const std::string& file, const io::QSplineMotion& motion,
-                              const std::optional<sweep::Profile<double>>& profile,
-                              const std::optional<Eigen::Vector3d>& point, int grid = 41);
-nlohmann::json check(const std::string& file, const io::QSplineMotion& motion,
-                     const Geometry& geometry, int grid = 41);
-
-/// Either kind of motion, as load_any_motion reads it.
-ExportResult export_geometry(const io::AnyMotion& motion, const Geometry& geometry,
-                             const ExportOptions& opt);
-nlohmann::json check(const std::string& file, const io::AnyMotion& motion, const Geometry& geometry,
+nlohmann::json check(const std::string& file, const Motion& motion, const Geometry& geometry,
                      int grid = 41);
 
 }  // namespace qmotion

@@ -5,6 +5,7 @@
 #include <qmotion/io/motion_json.hpp>
 #include <qmotion/io/poses.hpp>
 #include <qmotion/kernel/parametrization.hpp>
+#include <qmotion/motion.hpp>
 #include <string>
 #include <vector>
 
@@ -29,7 +30,7 @@ struct InterpolateOptions {
 /// needs (docs/formats.md: the curve, the factors it is the product of, the method with the input
 /// poses as given). The file is made on demand: document() as a tree, text() streamed.
 struct InterpolatedMotion {
-  kernel::Motion<double> motion;  ///< the motion (converted to double under --exact)
+  Motion motion;  ///< the rational motion (converted to double under --exact)
   std::string summary;
   std::vector<double> poles;
   io::PoseSet input;              ///< the poses as given, written as the method's input_poses

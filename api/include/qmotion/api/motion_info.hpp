@@ -30,4 +30,14 @@ nlohmann::json motion_eval(const io::MotionFile& motion, double t,
                            const Eigen::Vector3d& point = Eigen::Vector3d::Zero(),
                            std::string* warning = nullptr, const std::string& t_text = "");
 
+/// `qmotion info FILE` for a motion file of either kind: motion_info for a Q-motion,
+/// qspline_info for a quaternion spline (where `exact` is refused: it is not rational).
+nlohmann::json info_file(const std::string& path, bool exact = false);
+
+/// `qmotion eval FILE --t T` for a motion file of either kind: motion_eval for a Q-motion,
+/// qspline_eval (with the angular velocity) for a quaternion spline.
+nlohmann::json eval_file(const std::string& path, double t,
+                         const Eigen::Vector3d& point = Eigen::Vector3d::Zero(),
+                         std::string* warning = nullptr, const std::string& t_text = "");
+
 }  // namespace qmotion

@@ -5,10 +5,9 @@
 #include <nlohmann/json.hpp>
 #include <qmotion/io/poses.hpp>
 #include <qmotion/io/qspline_file.hpp>
-#include <qmotion/kernel/motion_value.hpp>
 #include <qmotion/kernel/qspline.hpp>
+#include <qmotion/motion.hpp>
 #include <string>
-#include <variant>
 
 namespace qmotion {
 
@@ -19,12 +18,23 @@ struct QSplineOptions {
   std::string param;    ///< a rule of `interpolate` (default: given when every pose has t)
 };
 
+/// A new quaternion-spline motion: the motion, a one-line summary of the solve, and its file
+/// (docs/formats.md: keys, positions, knots, the scheme's own fields and the method with the
+/// input poses as given).
+struct QSplineResult {
+  Motion motion;
+  std::string summary;
+  nlohmann::json document;
+  /// Writes the document to `path` atomically, as `qmotion qspline` does.
+  void save(const std::string& path) const;
+};
+
 /// The spline of the scheme through the poses (rotations and positions). The parameters of
 /// the rule give the interval [t_0, t_n]; the quintic keeps them as its knots, KKS and the
 /// quartic place the keys at uniform knots on that interval (recorded as method.uniform_keys
 /// when the rule's parameters are not uniform). Throws Errc::invalid_input naming the option
 /// or the poses, Errc::numerical_failure when KKS does not converge.
-io::QSplineMotion qspline(const io::PoseSet& poses, const QSplineOptions& options);
+QSplineResult qspline(const io::PoseSet& poses, const QSplineOptions& options);
 
 /// pose_residual of the spline at every key against the key's pose.
 std::vector<double> qspline_key_residuals(const kernel::QuaternionSpline& spline);

@@ -1,10 +1,9 @@
 // <qmotion/api/self_intersection.hpp>: does a kinematic sweep intersect itself? (CGAL mesh check)
 #pragma once
 #include <Eigen/Core>
-#include <functional>
-#include <qmotion/kernel/motion_value.hpp>
-#include <qmotion/kernel/qspline.hpp>
+#include <qmotion/motion.hpp>
 #include <qmotion/sweep/profiles.hpp>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -24,7 +23,14 @@ struct SelfIntersection {
 
   bool found() const { return pairs > 0; }
   /// "t in [a, b], profile edge 0 v in [c, d], ..." for messages.
-  std::string ranges() const;
+  std::string ranges() const {
+    std::ostringstream os;
+    os.precision(4);
+    os << "t in [" << t0 << ", " << t1 << "]";
+    for (const auto& e : edges)
+      os << ", profile edge " << e.edge << " v in [" << e.v0 << ", " << e.v1 << "]";
+    return os.str();
+  }
 };
 
 /// Tessellates the surface M(t) x(v) that the profile sweeps (one mesh over all edges, the
@@ -33,15 +39,8 @@ struct SelfIntersection {
 /// Triangles that touch only along a shared edge or vertex do not count; degenerate
 /// (zero-area) triangles are skipped. `samples_t` 0 chooses 16 per motion segment, 64 to
 /// 2000; each edge gets 8 per degree (at least 16).
-SelfIntersection sweep_self_intersections(const kernel::Motion<double>& motion,
+/// For a quaternion-spline motion the surface is made from its exact poses, not a fit.
+SelfIntersection sweep_self_intersections(const Motion& motion,
                                           const sweep::Profile<double>& profile, int samples_t = 0);
-/// The same for a quaternion-spline motion (its exact poses, not a fit).
-SelfIntersection sweep_self_intersections(const kernel::QuaternionSpline& motion,
-                                          const sweep::Profile<double>& profile, int samples_t = 0);
-/// The same for any motion given by the image place(t, x) of the point x at t in [a, b],
-/// with `segments` its polynomial (or key-to-key) segments for the default sampling.
-SelfIntersection sweep_self_intersections(
-    const std::function<Eigen::Vector3d(double, const Eigen::Vector3d&)>& place, double a, double b,
-    int segments, const sweep::Profile<double>& profile, int samples_t = 0);
 
 }  // namespace qmotion

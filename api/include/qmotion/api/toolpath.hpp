@@ -5,9 +5,9 @@
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 #include <optional>
-#include <qmotion/api/qspline.hpp>
 #include <qmotion/cam/toolpath.hpp>
 #include <qmotion/kernel/bspline.hpp>
+#include <qmotion/motion.hpp>
 #include <string>
 #include <vector>
 
@@ -64,6 +64,6 @@ struct Toolpath {
 /// tenth of the chord tolerance first (sweep::fit_frames), the chords within the rest.
 /// Errc::invalid_input names a bad option (zero axis, tolerance, format, a --rotary pose at
 /// the A/C singularity without c_hold); nothing is written then.
-Toolpath toolpath(const io::AnyMotion& motion, const ToolpathOptions& options);
+Toolpath toolpath(const Motion& motion, const ToolpathOptions& options);
 
 }  // namespace qmotion

@@ -86,8 +86,6 @@ nlohmann::json motion_to_json(const kernel::QMotion<double>& m, const nlohmann::
 /// give a motion without factors and provenance. A method block that records a field
 /// malformed is refused (Errc::invalid_input naming the field, and how to regenerate).
 kernel::Motion<double> to_motion(const MotionFile& f);
-/// read_motion then to_motion.
-kernel::Motion<double> load_motion(const std::string& path);
 
 /// The motion file document of a motion value (docs/formats.md): the curve, and a method block
 /// from its provenance and factors (none when it has neither). `input_poses`, when not

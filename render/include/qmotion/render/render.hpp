@@ -5,7 +5,7 @@
 #pragma once
 #include <Eigen/Core>
 #include <optional>
-#include <qmotion/io/qspline_file.hpp>
+#include <qmotion/motion.hpp>
 #include <qmotion/render/canvas.hpp>
 #include <qmotion/sweep/profiles.hpp>
 #include <string>
@@ -61,11 +61,11 @@ std::pair<int, int> parse_size(const std::string& text);
 
 /// The figure of the motion (either kind), not written. `result` receives the counts and
 /// the projection. Errc::invalid_input names a bad view, size, frame count or object.
-Canvas render_figure(const io::AnyMotion& motion, const RenderOptions& options,
+Canvas render_figure(const Motion& motion, const RenderOptions& options,
                      RenderResult* result = nullptr);
 
 /// render_figure written to options.output (.svg or .png, atomically).
-RenderResult render(const io::AnyMotion& motion, const RenderOptions& options);
+RenderResult render(const Motion& motion, const RenderOptions& options);
 
 /// A quantity along t, as `qmotion plot` draws it.
 enum class Quantity { speed, angular_speed, curvature, weights };
@@ -98,7 +98,7 @@ struct PlotSeries {
 /// pole; 1 throughout for a quaternion spline). Exact derivatives of the trajectories'
 /// NURBS for a q-motion; the spline's own derivatives for a quaternion spline (its
 /// acceleration by a central difference).
-PlotSeries sample_quantity(const io::AnyMotion& motion, const PlotOptions& options);
+PlotSeries sample_quantity(const Motion& motion, const PlotOptions& options);
 
 /// The plot of the motions' series on one set of axes (the first motion's key parameters
 /// marked; a legend when there are several), not written.
@@ -106,6 +106,6 @@ Canvas plot_figure(const std::vector<PlotSeries>& series, const PlotOptions& opt
                    const std::string& units);
 
 /// Samples each motion and writes the plot to options.output; returns the series.
-std::vector<PlotSeries> plot(const std::vector<io::AnyMotion>& motions, const PlotOptions& options);
+std::vector<PlotSeries> plot(const std::vector<Motion>& motions, const PlotOptions& options);
 
 }  // namespace qmotion::render

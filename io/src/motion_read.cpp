@@ -1,0 +1,344 @@
+// io/src/motion_read.cpp: motion files read (docs/formats.md): a fast reader of the common
+// layout that keeps no tree, the tree reader that words every refusal, and the checks both
+// share once the fields are read.
+#include <qmotion/io/json_number.hpp>
+#include <qmotion/io/motion_json.hpp>
+#include <qmotion/io/poses.hpp>
+#include <qmotion/kernel/error.hpp>
+#include <qmotion/kernel/interpolation.hpp>
+
+#include "json_simd.hpp"
+
+namespace qmotion::io {
+using json = nlohmann::json;
+namespace {
+
+/// The checks that need the whole file, once its fields are read (by either reader):
+/// default Bezier knots, control point count, the knot vector, the parameter range's
+/// agreement with it, a non-zero rotational part.
+void finish_motion(MotionFile& f, bool knots_given) {
+  const std::string& source = f.source;
+  const std::size_t n = f.ctrl.size();
+  const auto& range = f.range;
+  if (!knots_given && f.basis == kernel::Basis::bspline)
+    throw Error(Errc::invalid_input,
+                source + ": missing field 'knots' (required for a bspline motion)");
+  if (!knots_given) {
+    f.knots.assign(static_cast<std::size_t>(f.degree + 1), f.range[0]);
+    f.knots.insert(f.knots.end(), static_cast<std::size_t>(f.degree + 1), f.range[1]);
+  }
+  if (f.basis == kernel::Basis::bezier && n != static_cast<std::size_t>(f.degree + 1))
+    throw Error(Errc::invalid_input,
+                source + ": a Bezier motion of degree " + std::to_string(f.degree) + " needs " +
+                    std::to_string(f.degree + 1) + " control points, found " + std::to_string(n));
+  std::vector<double> kv;
+  for (const auto& k : f.knots) kv.push_back(k.value);
+  const auto issues = kernel::BSpline<double>::validate(f.degree, kv, n);
+  if (!issues.empty()) throw Error(Errc::invalid_input, source + ": knots: " + issues.front());
+  if (f.basis == kernel::Basis::bezier && (kv.size() != 2 * n || kv[n - 1] != kv.front()))
+    throw Error(Errc::invalid_input, source + ": knots: a Bezier motion has no interior knots");
+  for (std::size_t i = f.degree + 1; i + f.degree + 1 < kv.size(); ++i)
+    if (kv[i] == kv[i + f.degree])
+      throw Error(Errc::invalid_input,
+                  source + ": knots: knot " + f.knots[i].source() +
+                      " has multiplicity above the degree (the motion would be discontinuous)");
+  if (kv.front() != range[0].value || kv.back() != range[1].value)
+    throw Error(Errc::invalid_input, source + ": param_range [" + range[0].source() + ", " +
+                                         range[1].source() +
+                                         "] differs from the knot vector's ends");
+  bool real_nonzero = false;
+  for (const auto& c : f.ctrl)
+    for (std::size_t k = 0; k < 4; ++k) real_nonzero = real_nonzero || c[k].value != 0.0;
+  if (!real_nonzero)
+    throw Error(Errc::invalid_input,
+                source + ": control_points: the rotational (real) part is zero everywhere");
+}
+
+}  // namespace
+
+namespace {
+
+/// A method block's control points as rows of one width, read lean (the scanner on every
+/// core, or simdjson when the scanner declines); false for anything else (no rows, an empty
+/// row, rows of different widths, not numbers): the tree reader then reads and words it.
+bool control_rows(simd::sj::value v, MotionFile::Rows& out) {
+  simd::sj::array a;
+  std::string_view raw;
+  if (v.get_array().get(a) || a.raw_json().get(raw)) return false;
+  const bool scanned = simd::number_rows(
+      raw, 0,
+      [&](std::size_t n, std::size_t w) {
+        out.width = w;
+        out.values.assign(n * w, Number());
+        return true;
+      },
+      [&](std::size_t i) { return out.values.data() + i * out.width; }, /*lean=*/true);
+  if (scanned) return out.width != 0 && !out.values.empty();
+  return simd::read_value(raw, [&](simd::sj::value rv) {
+    simd::sj::array ra;
+    if (rv.get_array().get(ra)) return false;
+    out.width = 0;
+    out.values.clear();
+    for (auto e : ra) {
+      simd::sj::value row;
+      if (e.get(row)) return false;
+      const std::size_t before = out.values.size();
+      if (!simd::numbers(row, out.values, /*lean=*/true)) return false;
+      const std::size_t width = out.values.size() - before;
+      if (out.width == 0) out.width = width;
+      if (width == 0 || width != out.width) return false;
+    }
+    return out.width != 0;
+  });
+}
+
+/// The motion's control points, rows of 8 numbers read lean (the scanner on every core, or
+/// simdjson when the scanner declines); false for anything else, or more than
+/// kMaxMotionControlPoints.
+bool control_points(std::string_view raw, std::vector<std::array<Number, 8>>& ctrl) {
+  const bool scanned = simd::number_rows(
+      raw, 8,
+      [&](std::size_t n, std::size_t) {
+        if (n > kMaxMotionControlPoints) return false;
+        ctrl.assign(n, {});
+        return true;
+      },
+      [&](std::size_t i) { return ctrl[i].data(); }, /*lean=*/true);
+  if (scanned) return true;
+  return simd::read_value(raw, [&](simd::sj::value v) {
+    simd::sj::array rows;
+    std::size_t count = 0;
+    if (v.get_array().get(rows) || rows.count_elements().get(count) ||
+        count > kMaxMotionControlPoints)
+      return false;
+    ctrl.clear();
+    ctrl.reserve(count);  // no regrowth: the rows' numbers are moved, not copied twice
+    for (auto r : rows) {
+      simd::sj::array row;
+      if (r.get_array().get(row)) return false;
+      auto& c = ctrl.emplace_back();
+      std::size_t k = 0;
+      for (auto e : row) {
+        simd::sj::value ev;
+        if (k == 8 || e.get(ev) || !simd::number(ev, c[k++], /*lean=*/true)) return false;
+      }
+      if (k != 8) return false;
+    }
+    return true;
+  });
+}
+
+}  // namespace
+
+/// The motion file read straight from the text by simdjson, without a DOM for the
+/// control points and knots (a 10^4-pose motion is 10^5 numbers). std::nullopt as soon as
+/// anything is unusual (a field of the wrong kind, an exact "p/q" number, invalid JSON):
+/// parse_motion then reads the file and words the message. Throws only finish_motion's
+/// errors, which both readers share.
+std::optional<MotionFile> parse_motion_fast(const std::string& text, const std::string& source,
+                                            bool with_method) {
+  namespace sj = simd::sj;
+  simd::Document d(text);
+  sj::object root;
+  if (!d.ok || d.doc.get_object().get(root)) return std::nullopt;
+  MotionFile f;
+  f.source = source;
+  bool type = false, basis = false, degree = false, range = false, ctrl = false,
+       knots_given = false;
+  const auto numbers = [](sj::value v, std::vector<Number>& out, bool lean = false) {
+    out.clear();
+    return simd::numbers(v, out, lean);
+  };
+  for (auto field : root) {
+    std::string_view key;
+    if (field.unescaped_key().get(key)) return std::nullopt;
+    sj::value v = field.value();
+    if (key == "type") {
+      std::string_view t;
+      if (v.get_string().get(t) || t != "q-motion") return std::nullopt;
+      type = true;
+    } else if (key == "basis") {
+      std::string_view b;
+      if (v.get_string().get(b) || (b != "bezier" && b != "bspline")) return std::nullopt;
+      f.basis = b == "bezier" ? kernel::Basis::bezier : kernel::Basis::bspline;
+      basis = true;
+    } else if (key == "degree") {
+      std::int64_t g = 0;
+      sj::json_type t;
+      if (v.type().get(t) || t != sj::json_type::number || v.get_int64().get(g) || g < 0 || g > 200)
+        return std::nullopt;
+      f.degree = static_cast<int>(g);
+      degree = true;
+    } else if (key == "param_range") {
+      std::vector<Number> r;
+      if (!numbers(v, r) || r.size() != 2 || !(r[0].value < r[1].value)) return std::nullopt;
+      f.range = {r[0], r[1]};
+      range = true;
+    } else if (key == "units") {
+      std::string_view u;
+      if (v.get_string().get(u) || !is_known_unit(std::string(u))) return std::nullopt;
+      f.units = std::string(u);
+    } else if (key == "control_points") {
+      sj::array rows;
+      std::string_view raw;
+      if (v.get_array().get(rows) || rows.raw_json().get(raw)) return std::nullopt;
+      if (!control_points(raw, f.ctrl)) return std::nullopt;
+      ctrl = true;
+    } else if (key == "knots") {
+      bool null = false;
+      if (v.is_null().get(null)) return std::nullopt;
+      knots_given = !null;
+      if (!null && !numbers(v, f.knots, /*lean=*/true)) return std::nullopt;
+    } else if (key == "method") {
+      sj::json_type t;
+      if (v.type().get(t) || (t != sj::json_type::object && t != sj::json_type::null))
+        return std::nullopt;
+      if (!with_method) {
+        if (!simd::check(v)) return std::nullopt;
+        continue;
+      }
+      if (t == sj::json_type::null) {
+        f.method = nullptr;
+        continue;
+      }
+      // Member by member: the input poses straight into a pose set, the rest into a tree.
+      sj::object mo;
+      if (v.get_object().get(mo)) return std::nullopt;
+      f.method = json::object();
+      f.input_poses.reset();
+      f.factor_rows.clear();
+      for (auto mf : mo) {
+        std::string_view mk;
+        if (mf.unescaped_key().get(mk)) return std::nullopt;
+        sj::value mv = mf.value();
+        if (mk == "input_poses") {
+          if (f.input_poses) return std::nullopt;  // given twice: the tree reader decides
+          try {
+            f.input_poses = simd::poses(mv, source + ": method.input_poses");
+          } catch (const Error&) {
+            return std::nullopt;  // refused where the tree reader refuses it, in its words
+          }
+          if (!f.input_poses) return std::nullopt;
+        } else if (mk == "rotation_control_points" || mk == "translation_control_points" ||
+                   mk == "translation2_control_points") {
+          // Rows of equal width, read lean; anything else (or a repeat) the tree reader words.
+          if (f.factor_rows.count(mk) || !control_rows(mv, f.factor_rows[std::string(mk)]))
+            return std::nullopt;
+        } else if (!simd::build(mv, f.method[std::string(mk)], /*plain=*/true)) {
+          return std::nullopt;
+        }
+      }
+    } else {
+      nlohmann::json ignored;  // not read, but it must be valid JSON
+      if (!simd::build(v, ignored, false)) return std::nullopt;
+    }
+  }
+  if (!type || !basis || !degree || !range || !ctrl || !d.at_end()) return std::nullopt;
+  finish_motion(f, knots_given);
+  return f;
+}
+
+namespace {
+
+/// The file's fields, the method block checked but left to the caller to copy or move in.
+MotionFile parse_motion_fields(const json& doc, const std::string& source) {
+  MotionFile f;
+  f.source = source;
+  if (!doc.is_object())
+    throw Error(Errc::invalid_input, source + ": expected a JSON object (a motion file)");
+  const json& type = require(doc, "type", source);
+  if (type == "quaternion-spline")
+    throw Error(
+        Errc::invalid_input,
+        source +
+            ": type \"quaternion-spline\" is a non-rational motion and this needs a rational "
+            "q-motion (info, eval, trajectory, sweep and check read both kinds; check --exact "
+            "verifies rational motions only)");
+  if (type != "q-motion")
+    throw Error(Errc::invalid_input,
+                source + ": type: expected \"q-motion\", found " + type.dump());
+  const json& basis = require(doc, "basis", source);
+  if (basis == "bezier") {
+    f.basis = kernel::Basis::bezier;
+  } else if (basis == "bspline") {
+    f.basis = kernel::Basis::bspline;
+  } else {
+    throw Error(Errc::invalid_input,
+                source + ": basis: expected \"bezier\" or \"bspline\", found " + basis.dump());
+  }
+  const json& degree = require(doc, "degree", source);
+  if (!degree.is_number_integer() || degree.get<long long>() < 0 || degree.get<long long>() > 200)
+    throw Error(Errc::invalid_input,
+                source + ": degree: expected an integer from 0 to 200, found " + degree.dump());
+  f.degree = degree.get<int>();
+  const auto range = read_numbers(require(doc, "param_range", source), source + ": param_range");
+  if (range.size() != 2)
+    throw Error(Errc::invalid_input, source + ": param_range: expected [a, b]");
+  if (!(range[0].value < range[1].value))
+    throw Error(Errc::invalid_input, source + ": param_range: expected a < b");
+  f.range = {range[0], range[1]};
+  if (doc.contains("units")) {
+    if (!doc["units"].is_string() || !is_known_unit(doc["units"].get<std::string>()))
+      throw Error(Errc::invalid_input, source + ": units: expected one of mm, cm, m, in, ft, um");
+    f.units = doc["units"].get<std::string>();
+  }
+  const json& ctrl = require(doc, "control_points", source);
+  if (!ctrl.is_array())
+    throw Error(Errc::invalid_input, source + ": control_points: expected an array");
+  if (ctrl.size() > kMaxMotionControlPoints)
+    throw Error(Errc::invalid_input, source + ": control_points: more than " +
+                                         std::to_string(kMaxMotionControlPoints) +
+                                         " (the limit keeps memory bounded)");
+  f.ctrl.resize(ctrl.size());
+  for (std::size_t i = 0; i < ctrl.size(); ++i) {
+    // Messages are built only when a row is refused: this loop reads every number.
+    const auto w = [&] { return source + ": control_points[" + std::to_string(i) + "]"; };
+    const json& row = ctrl[i];
+    if (!row.is_array()) throw Error(Errc::invalid_input, w() + ": expected an array of numbers");
+    if (row.size() != 8)
+      throw Error(Errc::invalid_input,
+                  w() + ": expected 8 numbers (w,x,y,z, eps w,eps x,eps y,eps z), found " +
+                      std::to_string(row.size()));
+    std::array<Number, 8>& c = f.ctrl[i];
+    for (std::size_t k = 0; k < 8; ++k)
+      c[k] = read_number_lazy(row[k], [&] { return w() + "[" + std::to_string(k) + "]"; });
+  }
+  const bool knots_given = doc.contains("knots") && !doc["knots"].is_null();
+  if (knots_given) f.knots = read_numbers(doc["knots"], source + ": knots");
+  finish_motion(f, knots_given);
+  if (doc.contains("method")) {
+    if (!doc["method"].is_object() && !doc["method"].is_null())
+      throw Error(Errc::invalid_input, source +
+                                           ": method: expected an object (how the motion "
+                                           "was made), found " +
+                                           std::string(doc["method"].type_name()));
+  }
+  return f;
+}
+
+}  // namespace
+
+MotionFile parse_motion(const json& doc, const std::string& source) {
+  MotionFile f = parse_motion_fields(doc, source);
+  if (doc.contains("method")) f.method = doc["method"];
+  return f;
+}
+
+MotionFile parse_motion(json&& doc, const std::string& source) {
+  MotionFile f = parse_motion_fields(doc, source);
+  if (doc.contains("method")) f.method = std::move(doc["method"]);
+  return f;
+}
+
+MotionFile read_motion(const std::string& path) {
+  return parse_motion_text(read_text_file(path), path);
+}
+
+MotionFile parse_motion_text(const std::string& text, const std::string& path) {
+  if (auto f = parse_motion_fast(text, path)) return std::move(*f);
+  // The method block is metadata echoed back to users: its numbers stay numbers (the
+  // text-preserving parse turns float literals into strings).
+  return parse_motion(parse_json(text, path, "method"), path);
+}
+
+}  // namespace qmotion::io

@@ -1,0 +1,161 @@
+// python/jobs.cpp: the job as calls on a Motion: trajectory, sweep, export, check, toolpath,
+// and demo, compare and check_exact.
+#include "convert.hpp"
+
+namespace qmotion::python {
+namespace {
+
+py::object toolpath_call(const Motion& motion, const std::string& path, const py::object& point,
+                         const py::object& axis, double chord_tol, double angle_tol,
+                         double max_step, double feed, bool arc_length, const std::string& rotary,
+                         bool c_hold, const std::string& units, bool nurbs) {
+  ToolpathOptions o;
+  o.nurbs = nurbs;
+  o.units = units;
+  o.output = path;
+  o.point = vec3(point, "point");
+  o.axis = vec3(axis, "axis");
+  o.chord_tol = chord_tol;
+  o.angle_tol_deg = angle_tol;
+  o.max_step = max_step;
+  o.feed = feed;
+  o.arc_length = arc_length;
+  o.rotary = rotary;
+  o.c_hold = c_hold;
+  return to_python(toolpath(motion, o).report());
+}
+
+}  // namespace
+
+void bind_jobs(py::module_& m) {
+  m.def(
+      "trajectory",
+      [](const PyMotion& p, const py::object& point, int max_degree, double tol,
+         const std::string& units) {
+        return trajectory_nurbs(p.motion, vec3(point, "point"),
+                                export_options("", max_degree, tol, units, false, false));
+      },
+      py::arg("motion"), py::arg("point"), py::arg("max_degree") = -1, py::arg("tol") = -1.0,
+      py::arg("units") = "",
+      "The trajectory of `point` (moving space) as a NurbsCurve parametrised by t. A Q-motion's "
+      "is exact at its minimal degree with positive weights (above max_degree an approximation "
+      "within tol, default 1e-6 of its size); a quaternion spline's is fitted within tol at "
+      "degree max_degree (default 5). units converts (mm, cm, m, um, in, ft).");
+
+  m.def(
+      "sweep",
+      [](const PyMotion& p, const py::object& profile, int max_degree, double tol,
+         const std::string& units) {
+        return sweep_nurbs(p.motion, to_profile(profile, p.motion.units()),
+                           export_options("", max_degree, tol, units, false, false));
+      },
+      py::arg("motion"), py::arg("profile"), py::arg("max_degree") = -1, py::arg("tol") = -1.0,
+      py::arg("units") = "",
+      "The kinematic surface M(t) x(v) of each profile edge: a list of NurbsSurface, u = t, v "
+      "the edge's parameter; poles M_i X_j for a Q-motion (exact, no fitting), fitted within "
+      "tol at degree max_degree (default 5) for a quaternion spline. profile: a NurbsCurve, or a "
+      "spec as for the CLI: a .json/.step/.igs file, 'segment:x0,y0,z0:x1,y1,z1', "
+      "'polyline:x,y,z:...', 'rect:w,h', 'circle:r', 'arc:r,a0,a1'.");
+
+  m.def(
+      "export",
+      [](const PyMotion& p, const std::string& path, const py::object& profile,
+         const py::object& point, int max_degree, double tol, const std::string& units,
+         bool single_face, bool solid, double deflection, double angle, bool ascii) {
+        auto opt = export_options(path, max_degree, tol, units, single_face, solid);
+        opt.deflection = deflection;
+        opt.angle_deg = angle;
+        opt.ascii = ascii;
+        return to_python(result_json(
+            export_geometry(p.motion, to_geometry(p.motion.units(), profile, point), opt)));
+      },
+      py::arg("motion"), py::arg("path"), py::arg("profile") = py::none(),
+      py::arg("point") = py::none(), py::arg("max_degree") = -1, py::arg("tol") = -1.0,
+      py::arg("units") = "", py::arg("single_face") = false, py::arg("solid") = false,
+      py::arg("deflection") = 0.0, py::arg("angle") = 20.0, py::arg("ascii") = false,
+      "Writes the trajectory of `point` or the sweep of `profile` to path (.json, .step/.stp, "
+      ".igs/.iges; sweeps also a .stl/.obj/.ply mesh within deflection, default 1e-3 of the "
+      "size, angle in degrees, ascii STL/PLY), as `qmotion trajectory` / `qmotion sweep` do: "
+      "STEP/IGES shells split at C0 knots (single_face: one face per edge), solid=True for a "
+      "closed planar profile. Returns a dict: degrees, continuity, faces, poles, units, volume, "
+      "for a mesh its triangles and measured max_deviation, for a fit its "
+      "approximation_deviation and approximation_tolerance.");
+
+  m.def(
+      "demo", [](const std::string& dir) { return to_python(write_demo(dir)); },
+      py::arg("dir") = "demo-out",
+      "Runs `qmotion demo`: five embedded poses -> motion -> trajectories and the kinematic "
+      "surface of a parabola as JSON/STEP/IGES, checked, with demo.svg and report.json, all "
+      "written into dir or none of them. Returns the report as a dict.");
+
+  m.def(
+      "check",
+      [](const std::string& path, const PyMotion& p, const py::object& profile,
+         const py::object& point, int grid) {
+        return to_python(
+            check(path, p.motion, to_geometry(p.motion.units(), profile, point), grid));
+      },
+      py::arg("path"), py::arg("motion"), py::arg("profile") = py::none(),
+      py::arg("point") = py::none(), py::arg("grid") = 41,
+      "The exactness check of `qmotion check`: the file's NURBS (STEP/IGES read through "
+      "OpenCASCADE) against the motion applied to the profile or point. A dict with "
+      "max_deviation, relative_deviation, weights_positive, valid, faces, closed, volume, ... "
+      "A quaternion spline is checked against the spline itself (exp and log), not the fit.");
+
+  m.def(
+      "compare",
+      [](const py::object& poses, const std::string& param, const py::object& point,
+         const std::string& profile, double tol, const std::string& units) {
+        CompareOptions o;
+        o.param = param;
+        if (!point.is_none()) o.point = vec3(point, "point");
+        o.profile = profile;
+        o.rel_tol = tol;
+        return to_python(to_json(compare_schemes(to_poses(poses, units), o)));
+      },
+      py::arg("poses"), py::arg("param") = "", py::arg("point") = py::none(),
+      py::arg("profile") = "", py::arg("tol") = 1e-6, py::arg("units") = "mm",
+      "`qmotion compare`: for elliptic bspline, c1, kks, quintic and quartic through the "
+      "poses, a list of dicts: max_angular_velocity, max_angular_acceleration, "
+      "trajectory_length (of point), sweep_poles (exact, or fitted within tol of the sweep's "
+      "size), sweep_deviation, max_key_residual; or error.");
+
+  const char* toolpath_doc =
+      "`qmotion toolpath`: cutter-location points along the trajectory of point with the tool "
+      "axis R(t) axis, each chord within chord_tol of the exact trajectory and each axis within "
+      "angle_tol degrees of the chord's blend (certified from control points), written to path "
+      "(.apt/.cls, .csv, .nc/.ngc; rotary='ac' for a table-tilting A/C machine; nurbs=True for "
+      "G06.2 NURBS blocks of degree <= 3 with a certified deviation). Returns the report dict: "
+      "points, path_length, machining_time_min, max_chord_deviation_bound, ... (with nurbs: "
+      "degree, control_points, spans, exact, max_deviation_bound, max_deviation_measured)";
+  m.def(
+      "toolpath",
+      [](const PyMotion& p, const std::string& path, const py::object& point,
+         const py::object& axis, double chord_tol, double angle_tol, double max_step, double feed,
+         bool arc_length, const std::string& rotary, bool c_hold, const std::string& units,
+         bool nurbs) {
+        return toolpath_call(p.motion, path, point, axis, chord_tol, angle_tol, max_step, feed,
+                             arc_length, rotary, c_hold, units, nurbs);
+      },
+      py::arg("motion"), py::arg("path"), py::arg("point"),
+      py::arg("axis") = std::vector<double>{0, 0, 1}, py::arg("chord_tol"),
+      py::arg("angle_tol") = 0.5, py::arg("max_step") = 0.0, py::arg("feed") = 1000.0,
+      py::arg("arc_length") = false, py::arg("rotary") = "", py::arg("c_hold") = false,
+      py::arg("units") = "", py::arg("nurbs") = false, toolpath_doc);
+#ifdef QMOTION_WITH_CGAL
+  m.def(
+      "check_exact",
+      [](const std::string& motion_path, const py::object& point) {
+        std::optional<Eigen::Vector3d> x;
+        if (!point.is_none()) x = vec3(point, "point");
+        return to_python(check_exact(motion_path, x));
+      },
+      py::arg("motion_path"), py::arg("point") = py::none(),
+      "`qmotion check --exact`: the motion file recomputed in exact rationals from the poses "
+      "it records; a dict with the exact Plucker and interpolation residuals (plucker, "
+      "interpolation), file_deviation, the trajectory order of point by an exact gcd beside "
+      "the degree trajectory writes (order), and verified.");
+#endif
+}
+
+}  // namespace qmotion::python

@@ -1,0 +1,186 @@
+#!/usr/bin/env python3
+"""Generates docs/benchmarks.md from one run of the benchmark programs.
+
+Runs every Google Benchmark program of tests/bench (built with QMOTION_BUILD_BENCHMARKS)
+in one session, one after the other, with --benchmark_format=json, and writes a page with
+the date, the machine, the compiler, the build type and the commit it measured, a table per
+program, and the ratios of qmotion against the peers it is measured beside (OpenCASCADE's
+fitting and evaluation, nlohmann-json's tree, a plain ofstream) from that same run. The page
+is never edited by hand: run this script again.
+
+Usage: bench_page.py --build BUILD [--out docs/benchmarks.md] [--min-time 0.2]
+                     [--programs bench_sweep,bench_io,...]
+"""
+import argparse
+import datetime
+import json
+import os
+import platform
+import re
+import subprocess
+import sys
+
+PROGRAMS = ["bench_kernel", "bench_interpolation", "bench_spline", "bench_qspline",
+            "bench_sweep", "bench_toolpath", "bench_io"]
+
+# (qmotion's benchmark, the peer beside it, what both do); matched argument for argument.
+PEERS = [
+    ("BM_Degree16x2SurfaceBuildOnly", "BM_Peer_OcctFitDegree16x2Surface",
+     "degree 16 x 2 sweep surface: exact build vs OpenCASCADE's fit to a grid of exact points"),
+    ("BM_GridOurs/0", "BM_Peer_GridOcctD0",
+     "surface evaluation on a grid: qmotion's batched evaluator vs Geom_BSplineSurface::D0"),
+    ("BM_ReadMotion", "BM_ReadMotionNlohmann",
+     "reading a motion file: qmotion's reader vs an nlohmann-json tree"),
+    ("BM_WriteMotion", "BM_WriteMotionTree",
+     "writing a motion file: qmotion's streamed text vs an nlohmann-json tree"),
+    ("BM_WriteMotion", "BM_OfstreamSameBytes",
+     "writing a motion file: qmotion vs an ofstream writing the same bytes"),
+    ("BM_WriteTrajectoryJson", "BM_OfstreamSameTrajectoryBytes",
+     "writing a trajectory: qmotion vs an ofstream writing the same bytes"),
+]
+
+
+def run(cmd, **kw):
+    return subprocess.run(cmd, capture_output=True, text=True, **kw)
+
+
+def machine():
+    model = platform.processor() or platform.machine()
+    try:
+        with open("/proc/cpuinfo") as f:
+            m = re.search(r"model name\s*:\s*(.*)", f.read())
+            if m:
+                model = m.group(1).strip()
+    except OSError:
+        pass
+    mem = ""
+    try:
+        with open("/proc/meminfo") as f:
+            kb = int(re.search(r"MemTotal:\s*(\d+)", f.read()).group(1))
+            mem = ", %.0f GiB" % (kb / 2 ** 20)
+    except (OSError, AttributeError):
+        pass
+    return "%s, %d cores%s, %s" % (model, os.cpu_count(), mem, platform.platform())
+
+
+def cache_value(build, key):
+    try:
+        with open(os.path.join(build, "CMakeCache.txt")) as f:
+            m = re.search(r"^%s:[A-Z]+=(.*)$" % re.escape(key), f.read(), re.M)
+            return m.group(1) if m else ""
+    except OSError:
+        return ""
+
+
+def compiler(build):
+    cxx = cache_value(build, "CMAKE_CXX_COMPILER")
+    try:
+        return run([cxx, "--version"]).stdout.splitlines()[0]
+    except (OSError, IndexError):
+        return cxx
+
+
+def fmt_time(ns):
+    for unit, k in (("s", 1e9), ("ms", 1e6), ("us", 1e3)):
+        if ns >= k:
+            return "%.3g %s" % (ns / k, unit)
+    return "%.3g ns" % ns
+
+
+def to_ns(b):
+    k = {"ns": 1, "us": 1e3, "ms": 1e6, "s": 1e9}[b.get("time_unit", "ns")]
+    return b["real_time"] * k, b["cpu_time"] * k
+
+
+def counters(b):
+    skip = {"name", "run_name", "run_type", "repetitions", "repetition_index", "threads",
+            "iterations", "real_time", "cpu_time", "time_unit", "family_index",
+            "per_family_instance_index", "aggregate_name", "aggregate_unit", "label",
+            "error_occurred", "error_message"}
+    out = []
+    for k, v in b.items():
+        if k not in skip and isinstance(v, (int, float)):
+            out.append("%s %.4g" % (k, v))
+    if b.get("label"):
+        out.insert(0, b["label"])
+    return ", ".join(out)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--build", required=True)
+    ap.add_argument("--out", default="docs/benchmarks.md")
+    ap.add_argument("--min-time", default="0.2")
+    ap.add_argument("--programs", default=",".join(PROGRAMS))
+    a = ap.parse_args()
+    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    commit = run(["git", "rev-parse", "--short=12", "HEAD"], cwd=root).stdout.strip()
+    dirty = run(["git", "status", "--porcelain", "--untracked-files=no"], cwd=root).stdout
+    results = {}
+    for prog in a.programs.split(","):
+        exe = os.path.join(a.build, "tests", "bench", prog)
+        if not os.path.exists(exe):
+            sys.exit("%s: not built (configure with -DQMOTION_BUILD_BENCHMARKS=ON)" % exe)
+        print("running %s ..." % prog, file=sys.stderr)
+        r = run([exe, "--benchmark_format=json", "--benchmark_min_time=%s" % a.min_time],
+                cwd=a.build)
+        if r.returncode != 0:
+            sys.exit("%s failed:\n%s" % (prog, r.stderr))
+        results[prog] = json.loads(r.stdout)
+    first = next(iter(results.values()))["context"]
+    lines = ["# Benchmarks", "",
+             "Generated by `tests/bench/bench_page.py --build %s` in one session; do not edit: "
+             "run it again. Peers run in the same programs as qmotion, so their ratios come "
+             "from one machine in one run." % os.path.basename(os.path.abspath(a.build)), "",
+             "| | |", "| --- | --- |",
+             "| date | %s |" % datetime.datetime.now(datetime.timezone.utc).strftime(
+                 "%Y-%m-%d %H:%M UTC"),
+             "| commit | `%s`%s |" % (commit, " (with uncommitted changes)" if dirty else ""),
+             "| machine | %s |" % machine(),
+             "| compiler | %s, %s build |" % (compiler(a.build),
+                                             cache_value(a.build, "CMAKE_BUILD_TYPE")),
+             "| benchmark library | %s build, min time %s s per benchmark |" %
+             (first.get("library_build_type", "?"), a.min_time), ""]
+    by_name = {}
+    for prog, res in results.items():
+        for b in res["benchmarks"]:
+            if b.get("run_type") != "aggregate":
+                by_name[b["name"]] = b
+    lines += ["## qmotion against its peers", "",
+              "| what | qmotion | peer | peer / qmotion |", "| --- | --- | --- | --- |"]
+    for ours, peer, what in PEERS:
+        for name, b in sorted(by_name.items()):
+            if name != ours and not name.startswith(ours + "/"):
+                continue
+            suffix = name[len(ours):]
+            p = by_name.get(peer + suffix) or by_name.get(peer)
+            if not p:
+                continue
+            t0, t1 = to_ns(b)[0], to_ns(p)[0]
+            lines.append("| %s (`%s` vs `%s`) | %s | %s | %.2f |" %
+                         (what, name, p["name"], fmt_time(t0), fmt_time(t1), t1 / t0))
+    lines.append("")
+    for prog, res in results.items():
+        lines += ["## %s" % prog, "", "| benchmark | real | CPU | iterations | counters |",
+                  "| --- | --- | --- | --- | --- |"]
+        for b in res["benchmarks"]:
+            if b.get("run_type") == "aggregate":  # a complexity fit over the arguments
+                if "big_o" in b:
+                    what = "fit O(%s), %s per unit of N" % (b["big_o"],
+                                                           fmt_time(b["real_coefficient"]))
+                else:
+                    what = "%s %.3g" % (b.get("aggregate_name", ""), b.get("rms", 0))
+                lines.append("| `%s` | | | | %s |" % (b["name"], what))
+                continue
+            real, cpu = to_ns(b)
+            lines.append("| `%s` | %s | %s | %d | %s |" % (b["name"], fmt_time(real),
+                                                            fmt_time(cpu), b["iterations"],
+                                                            counters(b).replace("|", "\\|")))
+        lines.append("")
+    with open(a.out, "w", encoding="utf-8") as f:
+        f.write("\n".join(lines))
+    print("wrote %s" % a.out, file=sys.stderr)
+
+
+if __name__ == "__main__":
+    main()
