@@ -37,13 +37,7 @@ QSplineFit fit_qspline(const Motion& m, const std::vector<Eigen::Vector3d>& pts,
     }
     fo.tol = 1e-6 * std::max(diagonal(samples), 1e-300);
   }
-  try {
-    return {sweep::fit_frames([&](double t) { return s.frame(t); }, s.knots,
-                              s.interior_continuity(), pts, fo),
-            fo.tol};
-  } catch (const Error& e) {
-    throw Error(e.code(), m.label() + ": " + e.what());
-  }
+  return {sweep::fit_frames(m, pts, fo), fo.tol};
 }
 
 /// The approximation record of a fitted export (tolerance and deviation in the declared

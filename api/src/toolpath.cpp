@@ -7,6 +7,7 @@
 #include <functional>
 #include <qmotion/api/toolpath.hpp>
 #include <qmotion/cam/cam_nurbs.hpp>
+#include <qmotion/cam/tool_trajectories.hpp>
 #include <qmotion/io/atomic_file.hpp>
 #include <qmotion/io/progress.hpp>
 #include <qmotion/io/units.hpp>
@@ -61,68 +62,6 @@ void check_options(const ToolpathOptions& o, CamFormat f) {
     throw Error(Errc::invalid_input, "--max-step caps linear moves; it does not apply to --nurbs");
   if (o.arc_length && f != CamFormat::csv)
     throw Error(Errc::invalid_input, "--arc-length is for CSV output (.csv)");
-}
-
-/// The toolpath's trajectories: the homogeneous point and axis trajectories (exact for a
-/// rational motion, fitted for a quaternion spline) and the fit's error. The motion itself
-/// gives the exact placement for measurements.
-struct PathSource {
-  kernel::BSpline<Eigen::Vector4d> h, d;
-  std::function<Eigen::Vector3d(double)> exact_point;
-  std::function<Eigen::Vector3d(double)> exact_velocity;
-  double fit_error = 0;
-  std::vector<double> breaks;  ///< the motion's breakpoints and its continuity inside
-  std::vector<int> continuity;
-};
-
-PathSource source(const Motion& motion, const ToolpathOptions& o, double tol) {
-  const Eigen::Vector3d x = o.point;
-  const Eigen::Vector4d axis(0, o.axis(0), o.axis(1), o.axis(2));
-  if (motion.is_rational()) {
-    const kernel::Motion<double>& m = motion.rational();
-    const auto poles = kernel::find_poles(m.curve);
-    if (!poles.empty())
-      throw Error(Errc::numerical_failure,
-                  m.label() + ": the motion has a pole at t = " + std::to_string(poles.front()) +
-                      ": the tool would run to infinity there");
-    const auto h = sweep::trajectory(m, x);
-    const auto d = sweep::trajectories(m, {axis}).front();
-    const auto dh = kernel::derivative(h);
-    std::vector<double> breaks = h.breakpoints();
-    std::vector<int> continuity;
-    for (std::size_t i = 1; i + 1 < breaks.size(); ++i)
-      continuity.push_back(kernel::continuity_at(h, breaks[i]));
-    return PathSource{
-        h,
-        d,
-        [h](double t) {
-          const Eigen::Vector4d y = kernel::evaluate(h, t);
-          return Eigen::Vector3d(y.tail<3>() / y(0));
-        },
-        [h, dh](double t) { return sweep::detail::point_and_tangent(h, dh, t).second; },
-        0.0,
-        std::move(breaks),
-        std::move(continuity)};
-  }
-  sweep::FrameFitOptions fo;
-  fo.tol = 0.1 * tol;
-  // The axis tip 100 units out holds the fitted axis within 2e-3 x fo.tol radians.
-  const Eigen::Vector3d tip = x + 100 * o.axis.normalized();
-  sweep::FrameFit fit = [&] {
-    try {
-      return sweep::fit_frames([&](double t) { return motion.frame(t); }, motion.breakpoints(),
-                               motion.continuity(), {x, tip}, fo);
-    } catch (const Error& e) {
-      throw Error(e.code(), motion.label() + ": " + e.what());
-    }
-  }();
-  return PathSource{sweep::apply(fit.matrix, Eigen::Vector4d(1, x(0), x(1), x(2))),
-                    sweep::apply(fit.matrix, axis),
-                    [motion, x](double t) { return motion.place(t, x); },
-                    [motion, x](double t) { return motion.point_velocity(t, x); },
-                    fit.max_deviation,
-                    motion.breakpoints(),
-                    motion.continuity()};
 }
 
 /// The table-tilting A/C angles (degrees) that bring the tool axis k onto machine +Z:
@@ -183,7 +122,7 @@ void apt_line(std::ostringstream& os, const std::string& s) {
 }
 
 /// The length of the exact trajectory over [t0, t1] (Gauss-Legendre on the velocity).
-double arc_length(const PathSource& src, double t0, double t1) {
+double arc_length(const cam::ToolTrajectories& src, double t0, double t1) {
   double len = 0;
   for (const auto& [node, w] : sweep::detail::gauss_legendre())
     len += w * (t1 - t0) / 2 * src.exact_velocity((t0 + t1) / 2 + (t1 - t0) / 2 * node).norm();
@@ -207,7 +146,7 @@ constexpr double kNurbsQuantum = 1e6;
 /// tolerance `tol` (the motion's unit) less the quaternion spline's fit, certified for the
 /// numbers as written; measured against the exact motion at 64 points per span; Fanuc
 /// G06.2 blocks into os.
-void nurbs_toolpath(Toolpath& tp, const PathSource& src, double k, double tol,
+void nurbs_toolpath(Toolpath& tp, const cam::ToolTrajectories& src, double k, double tol,
                     std::ostringstream& os) {
   cam::CamNurbsOptions no;
   no.tol = tol - src.fit_error;
@@ -335,7 +274,7 @@ Toolpath toolpath(const Motion& motion, const ToolpathOptions& o) {
   }
   const double k = unit_factor(munits, tp.units);  // motion unit -> output unit
   const double tol = o.chord_tol / k;              // in the motion's unit
-  const PathSource src = source(motion, o, tol);
+  const cam::ToolTrajectories src = cam::tool_trajectories(motion, o.point, o.axis, tol);
   tp.chord_tol = o.chord_tol;
   tp.angle_tol_deg = o.angle_tol_deg;
   tp.feed = o.feed;

@@ -119,6 +119,23 @@ TEST_P(EitherKind, TheSameExportAndCheckCallsTakeIt) {
   fs::remove_all(dir);
 }
 
+TEST_P(EitherKind, TheToolFollowsThePointAndTheAxisWithinATenthOfTheTolerance) {
+  const V3 x(1, 0, 2), axis = V3(0.2, 0.1, 1).normalized();
+  const double tol = 1e-3;
+  const cam::ToolTrajectories tt = cam::tool_trajectories(m, x, axis, tol);
+  EXPECT_EQ(tt.fit_error == 0, m.is_rational());
+  EXPECT_LE(tt.fit_error, 0.1 * tol);
+  for (int k = 0; k <= 50; ++k) {
+    const double t = m.a() + (m.b() - m.a()) * k / 50;
+    const Eigen::Vector4d h = kernel::evaluate(tt.h, t), d = kernel::evaluate(tt.d, t);
+    const V3 want = m.place(t, x);
+    EXPECT_LE((V3(h.tail<3>() / h(0)) - want).norm(), m.is_rational() ? 1e-9 : 0.1 * tol) << t;
+    const V3 dir = m.place(t, axis) - m.place(t, V3::Zero());  // R axis
+    EXPECT_LE(std::acos(std::min(1.0, V3(d.tail<3>()).normalized().dot(dir))), 2e-3 * tol) << t;
+    EXPECT_LE((tt.exact_point(t) - want).norm(), 1e-9) << t;
+  }
+}
+
 TEST_P(EitherKind, ItsFileReadsBackAsTheSameMotion) {
   const fs::path dir = fs::temp_directory_path() / ("qmotion_mfile_" + std::to_string(::getpid()));
   fs::create_directories(dir);

@@ -13,6 +13,7 @@
 #include <qmotion/api/qspline.hpp>
 #include <qmotion/api/toolpath.hpp>
 #include <qmotion/cam/cam_nurbs.hpp>
+#include <qmotion/cam/tool_trajectories.hpp>
 #include <qmotion/io/atomic_file.hpp>
 #include <qmotion/io/json_number.hpp>
 #include <qmotion/io/mesh.hpp>

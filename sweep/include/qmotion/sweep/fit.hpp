@@ -9,6 +9,7 @@
 #include <qmotion/kernel/banded.hpp>
 #include <qmotion/kernel/bspline.hpp>
 #include <qmotion/kernel/error.hpp>
+#include <qmotion/motion.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -199,6 +200,19 @@ inline FrameFit fit_frames(const std::function<Eigen::Matrix4d(double)>& frame,
     }
     x = std::move(nx);
     mult = std::move(nm);
+  }
+}
+
+/// fit_frames for a motion: its rigid maps on its breakpoints with its continuity there (the
+/// fit of a quaternion spline's geometry; a rational motion's is exact and needs none).
+/// Refusals name the motion.
+inline FrameFit fit_frames(const qmotion::Motion& motion,
+                           const std::vector<Eigen::Vector3d>& points, const FrameFitOptions& opt) {
+  try {
+    return fit_frames([&motion](double t) { return motion.frame(t); }, motion.breakpoints(),
+                      motion.continuity(), points, opt);
+  } catch (const Error& e) {
+    throw Error(e.code(), motion.label() + ": " + e.what());
   }
 }
 
