@@ -43,15 +43,16 @@ QSplineFit fit_qspline(const Motion& m, const std::vector<Eigen::Vector3d>& pts,
 /// The approximation record of a fitted export (tolerance and deviation in the declared
 /// unit).
 json fit_json(const QSplineFit& q, const ExportResult& r) {
-  return json{{"method", "least-squares fit of the rigid maps on one knot vector (SPEC 3)"},
-              {"tolerance", q.tol * r.unit_factor},
-              {"measured_deviation", q.fit.max_deviation * r.unit_factor},
-              {"max_deviation", q.fit.max_deviation * r.unit_factor},
-              {"degree", q.fit.matrix.degree()},
-              {"poles_per_curve", q.fit.matrix.ctrl().size()},
-              {"spans", q.fit.spans},
-              {"check_samples", q.fit.check_samples},
-              {"continuity", r.continuity_u}};
+  return json{
+      {"method", "least-squares fit of the rigid maps on one knot vector (docs/geometry.md)"},
+      {"tolerance", q.tol * r.unit_factor},
+      {"measured_deviation", q.fit.max_deviation * r.unit_factor},
+      {"max_deviation", q.fit.max_deviation * r.unit_factor},
+      {"degree", q.fit.matrix.degree()},
+      {"poles_per_curve", q.fit.matrix.ctrl().size()},
+      {"spans", q.fit.spans},
+      {"check_samples", q.fit.check_samples},
+      {"continuity", r.continuity_u}};
 }
 
 void record_fit(const QSplineFit& q, ExportResult& r) {

@@ -86,31 +86,14 @@ QSplineResult qspline(const PoseSet& set, const QSplineOptions& o) {
   } catch (const Error& e) {
     throw Error(e.code(), set.source + ": " + e.what());
   }
-  const auto& s = spline;
+  const Motion motion(std::move(spline), set.units);
+  const kernel::QuaternionSpline& s = motion.spline();
   // Uniform constructions: are the rule's parameters where the keys are?
   double off = 0;
   for (std::size_t i = 0; i < t.size(); ++i) off = std::max(off, std::abs(t[i] - s.knots[i]));
   const bool moved = off > 1e-12 * (b - a);
 
-  json doc;
-  doc["type"] = "quaternion-spline";
-  doc["scheme"] = kernel::to_string(s.scheme);
-  doc["units"] = set.units;
-  doc["param_range"] = {a, b};
-  doc["knots"] = s.knots;
-  json k = json::array(), p = json::array();
-  for (const auto& q : s.keys) k.push_back(quat_json(q));
-  for (const auto& x : s.positions) p.push_back(vec_json(x));
-  doc["keys"] = k;
-  doc["positions"] = p;
-  if (s.scheme == QSplineScheme::quintic) doc["tension"] = s.tension;
-  if (s.scheme == QSplineScheme::kks) {
-    json c = json::array(), cp = json::array();
-    for (const auto& q : s.ctrl) c.push_back(quat_json(q));
-    for (const auto& x : s.pctrl) cp.push_back(vec_json(x));
-    doc["control_quaternions"] = c;
-    doc["control_positions"] = cp;
-  }
+  json doc = qspline_document(motion);
   json method;
   method["param"] = kernel::to_string(rule);
   method["parameters"] = t;
@@ -127,7 +110,7 @@ QSplineResult qspline(const PoseSet& set, const QSplineOptions& o) {
   if (moved)
     os << "; keys at uniform knots on [" << a << ", " << b << "] (the " << kernel::to_string(rule)
        << " parameters are not uniform)";
-  return QSplineResult{Motion(std::move(spline), set.units), os.str(), std::move(doc)};
+  return QSplineResult{motion, os.str(), std::move(doc)};
 }
 
 void QSplineResult::save(const std::string& path) const {

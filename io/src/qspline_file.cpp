@@ -1,6 +1,7 @@
 // io/src/qspline_file.cpp: quaternion-spline motion files (docs/formats.md), and reading a
 // motion file of either kind.
 #include <cmath>
+#include <qmotion/io/atomic_file.hpp>
 #include <qmotion/io/json_number.hpp>
 #include <qmotion/io/motion_json.hpp>
 #include <qmotion/io/qspline_file.hpp>
@@ -130,6 +131,39 @@ Motion qspline_motion(const json& doc, const std::string& source) {
     units = canonical_unit(doc["units"].get<std::string>(), source + ": units");
   }
   return Motion(qspline_from_document(doc, source), std::move(units), source);
+}
+
+json qspline_document(const Motion& motion) {
+  const kernel::QuaternionSpline& s = motion.spline();
+  auto quat = [](const Quaternion<double>& q) { return json{q.w(), q.x(), q.y(), q.z()}; };
+  auto vec = [](const Eigen::Vector3d& v) { return json{v(0), v(1), v(2)}; };
+  json doc;
+  doc["type"] = "quaternion-spline";
+  doc["scheme"] = kernel::to_string(s.scheme);
+  doc["units"] = motion.units();
+  doc["param_range"] = {s.a(), s.b()};
+  doc["knots"] = s.knots;
+  json k = json::array(), p = json::array();
+  for (const auto& q : s.keys) k.push_back(quat(q));
+  for (const auto& x : s.positions) p.push_back(vec(x));
+  doc["keys"] = k;
+  doc["positions"] = p;
+  if (s.scheme == QSplineScheme::quintic) doc["tension"] = s.tension;
+  if (s.scheme == QSplineScheme::kks) {
+    json c = json::array(), cp = json::array();
+    for (const auto& q : s.ctrl) c.push_back(quat(q));
+    for (const auto& x : s.pctrl) cp.push_back(vec(x));
+    doc["control_quaternions"] = c;
+    doc["control_positions"] = cp;
+  }
+  return doc;
+}
+
+void save_motion(const Motion& motion, const std::string& path) {
+  if (motion.is_rational())
+    save_motion(motion.rational(), path);
+  else
+    write_file_atomic(path, qspline_document(motion).dump(1) + "\n");
 }
 
 Motion load_motion(const std::string& path) {

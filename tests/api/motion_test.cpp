@@ -159,6 +159,23 @@ TEST_P(EitherKind, ItsFileReadsBackAsTheSameMotion) {
   fs::remove_all(dir);
 }
 
+TEST_P(EitherKind, IoWritesEitherKindAndReadsItBack) {
+  const fs::path dir = fs::temp_directory_path() / ("qmotion_msave_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string path = (dir / "saved.json").string();
+  io::save_motion(m, path);
+  const Motion back = io::load_motion(path);
+  EXPECT_EQ(back.is_rational(), m.is_rational());
+  EXPECT_EQ(back.units(), m.units());
+  EXPECT_EQ(back.key_parameters(), m.key_parameters());
+  EXPECT_EQ(back.continuity(), m.continuity());
+  for (int k = 0; k <= 20; ++k) {
+    const double t = m.a() + (m.b() - m.a()) * k / 20;
+    EXPECT_LE((back.frame(t) - m.frame(t)).norm(), 1e-12) << t;
+  }
+  fs::remove_all(dir);
+}
+
 INSTANTIATE_TEST_SUITE_P(Motion, EitherKind,
                          ::testing::Values(Kind{"bezier", true}, Kind{"bspline", true},
                                            Kind{"c1", true}, Kind{"kks", false},

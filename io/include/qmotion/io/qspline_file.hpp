@@ -25,6 +25,16 @@ kernel::QuaternionSpline qspline_from_document(const nlohmann::json& doc,
 /// checked), named `source`.
 Motion qspline_motion(const nlohmann::json& doc, const std::string& source);
 
+/// A quaternion-spline motion's file document (docs/formats.md) without its method block:
+/// type, scheme, units, param_range, knots, keys, positions, and the scheme's own fields
+/// (tension; KKS's control quaternions and positions). Errc::invalid_input for a rational
+/// motion.
+nlohmann::json qspline_document(const Motion& motion);
+
+/// Writes a motion of either kind as its file (atomically): a Q-motion as save_motion does,
+/// a quaternion spline as qspline_document; read back by load_motion.
+void save_motion(const Motion& motion, const std::string& path);
+
 /// Reads a motion file of either kind (docs/formats.md): a rational Q-motion or a quaternion
 /// spline, named by the path. Refusals name the file and the field.
 Motion load_motion(const std::string& path);
