@@ -118,7 +118,7 @@ def main():
     dirty = run(["git", "status", "--porcelain", "--untracked-files=no"], cwd=root).stdout
     results = {}
     for prog in a.programs.split(","):
-        exe = os.path.join(a.build, "tests", "bench", prog)
+        exe = os.path.abspath(os.path.join(a.build, "tests", "bench", prog))
         if not os.path.exists(exe):
             sys.exit("%s: not built (configure with -DQMOTION_BUILD_BENCHMARKS=ON)" % exe)
         print("running %s ..." % prog, file=sys.stderr)
