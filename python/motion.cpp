@@ -1,6 +1,5 @@
 // python/motion.cpp: qmotion.Motion, one class for both kinds of motion, and the calls that
 // make one: load, interpolate, qspline.
-#include <fstream>
 #include <sstream>
 
 #include "convert.hpp"
@@ -57,15 +56,17 @@ py::array_t<double> control_points(const Motion& m) {
 }
 
 PyMotion load(const std::string& path) {
-  Motion motion = io::load_motion(path);  // refusals name the file and the field
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  json document = json::parse(text.str());  // as written (numbers as numbers)
-  std::optional<io::MotionFile> file;
-  if (motion.is_rational()) file = io::read_motion(path);  // the digits, for info --exact
-  // save() writes the file back as it was read.
-  return PyMotion{std::move(motion), std::move(file), std::move(document), text.str()};
+  // Read once: the text (save() writes it back as it was read), its tree as written
+  // (numbers as numbers, for to_dict), and the motion, refusals naming the file and field.
+  std::string text = io::read_text_file(path);
+  json document = json::parse(text, nullptr, /*allow_exceptions=*/false);
+  if (io::is_qspline_document(document)) {
+    Motion motion = io::qspline_motion(document, path);
+    return PyMotion{std::move(motion), std::nullopt, std::move(document), std::move(text)};
+  }
+  io::MotionFile file = io::parse_motion_text(text, path);  // the digits, for info --exact
+  Motion motion(io::to_motion(file));
+  return PyMotion{std::move(motion), std::move(file), std::move(document), std::move(text)};
 }
 
 void bind_motion_class(py::module_& m) {
