@@ -43,6 +43,7 @@ inline std::string approximation_note(const qmotion::ExportResult& r) {
 Command add_info(CLI::App& app);
 Command add_eval(CLI::App& app);
 Command add_interpolate(CLI::App& app);
+Command add_fit(CLI::App& app);
 Command add_poses(CLI::App& app);
 Command add_trajectory(CLI::App& app);
 Command add_sweep(CLI::App& app);

@@ -23,7 +23,8 @@ Command add_compare(CLI::App& app) {
     bool json = false;
   };
   auto o = std::make_shared<Options>();
-  sub->add_option("POSES", o->poses, "Pose file (.json or .csv)")->required();
+  sub->add_option("POSES", o->poses, "Pose file (.json, .csv, KUKA KRL .src, ABB RAPID .mod/.prg)")
+      ->required();
   sub->add_option("--param", o->options.param, "Parametrisation rule, for every scheme");
   sub->add_option("--point", o->point,
                   "The point x,y,z whose trajectory length is measured (default: the origin)");

@@ -21,7 +21,8 @@ Command add_interpolate(CLI::App& app) {
   };
   auto o = std::make_shared<Options>();
 
-  sub->add_option("POSES", o->poses, "Pose file (.json or .csv)")->required();
+  sub->add_option("POSES", o->poses, "Pose file (.json, .csv, KUKA KRL .src, ABB RAPID .mod/.prg)")
+      ->required();
   sub->add_option("-o,--output", o->output, "Motion JSON file to write")->required();
   sub->add_option("--rotation", o->options.rotation,
                   "Rotation interpolation: elliptic (default), affine, projective (the last two "

@@ -11,10 +11,12 @@
 namespace qmotion::cli {
 
 Command add_poses(CLI::App& app) {
-  auto* sub = app.add_subcommand(
-      "poses", "Validate a pose file (JSON or CSV); with -o, write it as canonical pose JSON");
+  auto* sub = app.add_subcommand("poses",
+                                 "Validate a pose file (JSON, CSV or a KRL/RAPID robot program); "
+                                 "with -o, write it as canonical pose JSON");
   auto o = std::make_shared<std::pair<std::string, std::string>>();
-  sub->add_option("POSES", o->first, "Pose file (.json or .csv)")->required();
+  sub->add_option("POSES", o->first, "Pose file (.json, .csv, KUKA KRL .src, ABB RAPID .mod/.prg)")
+      ->required();
   sub->add_option("-o,--output", o->second,
                   "Write the poses as JSON (docs/formats.md) to this file");
   return {sub, [o] {

@@ -20,7 +20,8 @@ Command add_qspline(CLI::App& app) {
     qmotion::QSplineOptions options;
   };
   auto o = std::make_shared<Options>();
-  sub->add_option("POSES", o->poses, "Pose file (.json or .csv)")->required();
+  sub->add_option("POSES", o->poses, "Pose file (.json, .csv, KUKA KRL .src, ABB RAPID .mod/.prg)")
+      ->required();
   sub->add_option("-o,--output", o->output, "Motion JSON file to write")->required();
   sub->add_option("--scheme", o->options.scheme,
                   "kks (Kim-Kim-Shin C2 B-spline, iterative), quintic (Tan et al., tension, any "

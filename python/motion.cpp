@@ -1,5 +1,6 @@
 // python/motion.cpp: qmotion.Motion, one class for both kinds of motion, and the calls that
 // make one: load, interpolate, qspline.
+#include <qmotion/api/fit.hpp>
 #include <sstream>
 
 #include "convert.hpp"
@@ -237,6 +238,27 @@ void bind_motion(py::module_& m) {
       "  degree, translation_degree: the B-spline factors' degrees K and L (default 3)\n"
       "  exact: CGAL exact rationals (quaternion rotations, 'p/q' strings kept exactly)\n"
       "poses: a file name, a pose dict, or rows [t,x,y,z,qw,qx,qy,qz] (units for arrays).");
+
+  m.def(
+      "fit",
+      [](const py::object& poses, double tol, double angle_tol, int degree, int translation_degree,
+         const std::string& param, const std::string& units) {
+        FitOptions o;
+        o.tol = tol;
+        o.angle_tol_deg = angle_tol;
+        o.degree = degree;
+        o.translation_degree = translation_degree;
+        o.param = param;
+        const FitResult r = fit(to_poses(poses, units), o);
+        return py::make_tuple(rational_motion(r.document(), "fit()", r.text()),
+                              to_python(r.report_json()));
+      },
+      py::arg("poses"), py::arg("tol"), py::arg("angle_tol") = 0.1, py::arg("degree") = -1,
+      py::arg("translation_degree") = -1, py::arg("param") = "", py::arg("units") = "mm",
+      "A lean B-spline Q-motion within tol (the poses' unit) of every pose's position and\n"
+      "angle_tol degrees of its rotation, as `qmotion fit`; returns (Motion, report) where the\n"
+      "report dict gives control_points, spans, the worst deviations and where, and the\n"
+      "deviation at every pose. poses: as for interpolate (also .src KRL, .mod/.prg RAPID).");
 
   m.def(
       "qspline",

@@ -168,6 +168,12 @@ json check_exact(const std::string& motion_path, const std::optional<Eigen::Vect
                 f.source +
                     ": check --exact: a c1 motion's velocities are estimated with square "
                     "roots and logarithms; it has no exact recomputation");
+  if (prov.form == kernel::Form::fit)
+    throw Error(Errc::invalid_input,
+                f.source +
+                    ": check --exact: a fitted motion comes from a floating-point least-squares "
+                    "solve near its poses, not through them; it has no exact recomputation "
+                    "(use `qmotion check` for its deviations)");
   if (file_motion.degree() > kMaxExactInfoDegree ||
       file_motion.segments() > kMaxExactInfoSegments || prov.poses.size() > kMaxExactCheckPoses)
     throw Error(

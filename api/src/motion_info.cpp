@@ -11,6 +11,7 @@
 #include <qmotion/kernel/error.hpp>
 #include <qmotion/kernel/interpolation.hpp>
 #include <qmotion/kernel/motion.hpp>
+#include <qmotion/kernel/motion_fit.hpp>
 #include <qmotion/kernel/order.hpp>
 
 namespace qmotion {
@@ -114,6 +115,17 @@ json motion_info(const MotionFile& f, bool exact) {
                                     kernel::Rational(0));
 #endif
   out["interpolation_residual"] = res;
+  if (motion.provenance && motion.provenance->form == kernel::Form::fit) {
+    // A fitted motion passes near its poses, not through them: its deviations, measured.
+    const auto& p = *motion.provenance;
+    const auto dev = kernel::fit_deviations(m, p.poses, p.parameters);
+    out["fit"] = {{"tolerance", p.tolerance},
+                  {"angle_tolerance_deg", p.angle_tolerance_deg},
+                  {"worst_position", dev.worst_position},
+                  {"worst_position_pose", dev.worst_position_pose},
+                  {"worst_angle_deg", dev.worst_angle_deg},
+                  {"worst_angle_pose", dev.worst_angle_pose}};
+  }
   out["poles"] = kernel::find_poles(m);
   if (f.method.is_object()) {
     // The record without its bulky members (copied member by member: the input poses and

@@ -175,6 +175,10 @@ json method_json(const kernel::Motion<Scalar>& m, const json& input_poses, NumOu
       method["translation_degree"] = p.translation_degree;
     }
     method["max_interpolation_residual"] = p.max_residual();
+    if (p.form == kernel::Form::fit) {
+      method["tolerance"] = p.tolerance;
+      method["angle_tolerance_deg"] = p.angle_tolerance_deg;
+    }
   }
   if (m.factors) {
     const auto& f = *m.factors;
@@ -235,6 +239,10 @@ void method_text(JsonText& t, const kernel::Motion<double>& m, const PoseSet* in
       add("translation_degree", [&t, &p](int) { t.integer(p.translation_degree); });
     }
     add("max_interpolation_residual", [&t, &p](int) { t.number(p.max_residual()); });
+    if (p.form == kernel::Form::fit) {
+      add("tolerance", [&t, &p](int) { t.number(p.tolerance); });
+      add("angle_tolerance_deg", [&t, &p](int) { t.number(p.angle_tolerance_deg); });
+    }
   }
   if (m.factors) {
     const auto& f = *m.factors;
@@ -283,8 +291,15 @@ std::optional<kernel::Provenance<double>> read_provenance(
     return me[key].is_string() ? me[key].get<std::string>() : std::string();
   };
   const auto form = kernel::form_from_string(name("form"));
-  if (!form) bad_method_field(f.source, "form", "bezier, bspline or c1");
+  if (!form) bad_method_field(f.source, "form", "bezier, bspline, c1 or fit");
   p.form = *form;
+  if (p.form == kernel::Form::fit)  // the tolerances the fit met (docs/fitting.md)
+    for (auto [key, field] : {std::pair{"tolerance", &p.tolerance},
+                              std::pair{"angle_tolerance_deg", &p.angle_tolerance_deg}}) {
+      if (!me.contains(key) || !me[key].is_number() || !(me[key].get<double>() > 0))
+        bad_method_field(f.source, key, "a positive number (the tolerance the fit met)");
+      *field = me[key].get<double>();
+    }
   const auto rot = kernel::rotation_method_from_string(name("rotation"));
   if (!rot) bad_method_field(f.source, "rotation", "elliptic, affine or projective");
   p.rotation = *rot;

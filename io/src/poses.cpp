@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <qmotion/io/json_text.hpp>
 #include <qmotion/io/poses.hpp>
+#include <qmotion/io/robot_programs.hpp>
 #include <qmotion/kernel/error.hpp>
 #include <sstream>
 
@@ -395,6 +397,16 @@ PoseSet read_poses(const std::string& path) {
   std::string ext = dot == std::string::npos ? "" : path.substr(dot + 1);
   for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   if (ext == "csv") return parse_poses_csv(text, path);
+  if (ext == "src") {  // KUKA KRL, with the .dat beside it when there is one
+    for (const char* dat : {".dat", ".DAT"}) {
+      const std::string dat_path = path.substr(0, dot) + dat;
+      std::error_code ec;
+      if (std::filesystem::exists(dat_path, ec))
+        return parse_krl(text, path, read_text_file(dat_path), dat_path);
+    }
+    return parse_krl(text, path);
+  }
+  if (ext == "mod" || ext == "prg") return parse_rapid(text, path);
   return parse_poses_json(text, path);
 }
 

@@ -21,7 +21,7 @@ import subprocess
 import sys
 
 PROGRAMS = ["bench_kernel", "bench_interpolation", "bench_spline", "bench_qspline",
-            "bench_sweep", "bench_toolpath", "bench_io"]
+            "bench_sweep", "bench_toolpath", "bench_io", "bench_fit"]
 
 # (qmotion's benchmark, the peer beside it, what both do); matched argument for argument.
 PEERS = [
@@ -35,6 +35,8 @@ PEERS = [
      "writing a motion file: qmotion's streamed text vs an nlohmann-json tree"),
     ("BM_WriteMotion", "BM_OfstreamSameBytes",
      "writing a motion file: qmotion vs an ofstream writing the same bytes"),
+    ("BM_Fit", "BM_Peer_InterpolateAll",
+     "a dense noisy pose stream: fit within the tolerances vs a B-spline through every pose"),
     ("BM_WriteTrajectoryJson", "BM_OfstreamSameTrajectoryBytes",
      "writing a trajectory: qmotion vs an ofstream writing the same bytes"),
 ]

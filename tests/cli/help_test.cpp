@@ -29,8 +29,8 @@ namespace {
 TEST(Cli, HelpVersionAndUsage) {
   const Result h = run({"--help"});
   EXPECT_EQ(h.status, 0);
-  for (const char* cmd : {"info", "eval", "poses", "interpolate", "trajectory", "sweep", "check",
-                          "demo", "Exit status"})
+  for (const char* cmd : {"info", "eval", "poses", "interpolate", "fit", "trajectory", "sweep",
+                          "check", "demo", "Exit status"})
     EXPECT_NE(h.out.find(cmd), std::string::npos) << cmd;
   const Result sub = run({"eval", "--help"});
   EXPECT_EQ(sub.status, 0);

@@ -465,3 +465,32 @@ def test_one_motion_class_answers_the_same_calls_for_both_kinds(make):
         assert m.degree == doc["degree"] and m.kind == "q-motion" and m.scheme is None
     else:
         assert m.degree is None and m.kind == "quaternion-spline"
+
+
+def test_fit_is_the_clis_and_reports_what_the_motion_does(tmp_path):
+    poses = data("fit/noisy_helix.json")
+    motion, report = qmotion.fit(poses, tol=0.01, angle_tol=0.05)
+    out = tmp_path / "cli.json"
+    r = cli("fit", poses, "-o", out, "--tol", 0.01, "--angle-tol", 0.05)
+    assert r.returncode == 0, r.stderr
+    assert motion.to_dict() == json.loads(out.read_text())
+    assert motion.info()["method"]["form"] == "fit"
+    assert report["control_points"] * 10 <= report["poses"] == 400
+    # The worst deviations, measured here through frame() from the poses as read.
+    doc = json.loads(open(poses).read())
+    worst_pos = worst_ang = 0.0
+    for p in doc["poses"]:
+        F = motion.frame(p["t"])
+        worst_pos = max(worst_pos, float(np.linalg.norm(F[1:, 0] - np.array(p["position"]))))
+        w, x, y, z = np.array(p["rotation"]["quaternion"]) / np.linalg.norm(p["rotation"]["quaternion"])
+        R = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+                      [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+                      [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
+        c = (np.trace(R.T @ F[1:, 1:]) - 1) / 2
+        worst_ang = max(worst_ang, float(np.degrees(np.arccos(min(1.0, max(-1.0, c))))))
+    assert worst_pos <= 0.01 and worst_ang <= 0.05
+    assert report["worst_position"] == pytest.approx(worst_pos, rel=1e-9)
+    assert report["worst_angle_deg"] == pytest.approx(worst_ang, rel=1e-5, abs=1e-9)
+    assert max(report["position_deviation"]) == report["worst_position"]
+    with pytest.raises(ArithmeticError, match="cannot be met"):
+        qmotion.fit(poses, tol=1e-4)

@@ -8,6 +8,7 @@
 #include <qmotion/api/demo.hpp>
 #include <qmotion/api/evaluate.hpp>
 #include <qmotion/api/export.hpp>
+#include <qmotion/api/fit.hpp>
 #include <qmotion/api/interpolate.hpp>
 #include <qmotion/api/motion_info.hpp>
 #include <qmotion/api/qspline.hpp>

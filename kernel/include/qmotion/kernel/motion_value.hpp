@@ -29,6 +29,8 @@ struct Provenance {
   std::vector<Scalar> parameters;  ///< t_i, strictly increasing
   std::vector<Pose<Scalar>> poses;
   std::vector<double> residuals;  ///< pose_residual at every pose
+  /// Form::fit: the tolerances the fit met (position, length unit; rotation, degrees).
+  double tolerance = 0, angle_tolerance_deg = 0;
   /// Bezier motions: poses where |Q_rot(t_i)| is below 1% of Q_rot's largest coefficient
   /// (near-inaccessible; rounding is amplified there).
   std::vector<int> near_inaccessible;
@@ -135,6 +137,8 @@ Motion<double> to_double(const Motion<Scalar>& m) {
       for (const auto& t : p.parameters) q.parameters.push_back(sd(t));
       for (const auto& x : p.poses) q.poses.push_back(pose_to_double(x));
       q.residuals = p.residuals;
+      q.tolerance = p.tolerance;
+      q.angle_tolerance_deg = p.angle_tolerance_deg;
       q.near_inaccessible = p.near_inaccessible;
       out.provenance = std::move(q);
     }

@@ -1,0 +1,77 @@
+// tests/bench/fit_bench.cpp: `fit` on dense, noisy samples of a smooth motion (noise below a
+// third of the tolerances) at 10^3, 10^4 and 10^5 poses and two tolerance levels: control
+// points against poses (goal: at least 10x fewer), worst deviations, and time (goal: linear,
+// 10^5 poses in a few seconds). The peer is what a user does without it: a B-spline Q-motion
+// interpolating every pose.
+#include <benchmark/benchmark.h>
+
+#include <map>
+#include <qmotion/kernel/motion_fit.hpp>
+
+#include "fit_streams.hpp"
+
+namespace {
+using namespace qmotion;
+
+/// Level 0: 0.01 mm and 0.05 degrees; level 1: 0.001 mm and 0.01 degrees.
+kernel::FitOptions level(int i) {
+  kernel::FitOptions o;
+  o.tol = i == 0 ? 0.01 : 0.001;
+  o.angle_tol_deg = i == 0 ? 0.05 : 0.01;
+  return o;
+}
+
+const test::Stream& stream(std::size_t n, int lv) {
+  static std::map<std::pair<std::size_t, int>, test::Stream> cache;
+  auto& s = cache[{n, lv}];
+  if (s.poses.empty()) {
+    const auto o = level(lv);
+    s = test::noisy_stream(n, o.tol / 3.5, o.angle_tol_deg / 3.5, 17);
+  }
+  return s;
+}
+
+void BM_Fit(benchmark::State& st) {
+  const std::size_t n = static_cast<std::size_t>(st.range(0));
+  const int lv = static_cast<int>(st.range(1));
+  const auto& s = stream(n, lv);
+  std::size_t points = 0;
+  double pos = 0, ang = 0;
+  for (auto _ : st) {
+    const auto f = kernel::fit_bspline(s.poses, s.t, level(lv));
+    points = f.motion.curve.curve.ctrl().size();
+    pos = f.report.worst_position;
+    ang = f.report.worst_angle_deg;
+    benchmark::DoNotOptimize(points);
+  }
+  st.counters["poses"] = static_cast<double>(n);
+  st.counters["control_points"] = static_cast<double>(points);
+  st.counters["poses_per_control_point"] = static_cast<double>(n) / static_cast<double>(points);
+  st.counters["worst_mm"] = pos;
+  st.counters["worst_deg"] = ang;
+}
+BENCHMARK(BM_Fit)
+    ->ArgsProduct({{1000, 10000, 100000}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+void BM_Peer_InterpolateAll(benchmark::State& st) {
+  const std::size_t n = static_cast<std::size_t>(st.range(0));
+  const auto& s = stream(n, static_cast<int>(st.range(1)));
+  std::size_t points = 0;
+  for (auto _ : st) {
+    const auto m = kernel::interpolate_bspline(s.poses, s.t, kernel::SplineOptions{});
+    points = m.curve.curve.ctrl().size();
+    benchmark::DoNotOptimize(points);
+  }
+  st.counters["poses"] = static_cast<double>(n);
+  st.counters["control_points"] = static_cast<double>(points);
+}
+BENCHMARK(BM_Peer_InterpolateAll)
+    ->ArgsProduct({{1000, 10000, 100000}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+}  // namespace
+
+BENCHMARK_MAIN();
