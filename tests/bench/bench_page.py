@@ -35,7 +35,7 @@ PEERS = [
      "writing a motion file: qmotion's streamed text vs an nlohmann-json tree"),
     ("BM_WriteMotion", "BM_OfstreamSameBytes",
      "writing a motion file: qmotion vs an ofstream writing the same bytes"),
-    ("BM_Fit", "BM_Peer_InterpolateAll",
+    ("BM_FitPoses", "BM_Peer_InterpolateAll",
      "a dense noisy pose stream: fit within the tolerances vs a B-spline through every pose"),
     ("BM_WriteTrajectoryJson", "BM_OfstreamSameTrajectoryBytes",
      "writing a trajectory: qmotion vs an ofstream writing the same bytes"),

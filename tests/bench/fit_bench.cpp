@@ -31,7 +31,7 @@ const test::Stream& stream(std::size_t n, int lv) {
   return s;
 }
 
-void BM_Fit(benchmark::State& st) {
+void BM_FitPoses(benchmark::State& st) {
   const std::size_t n = static_cast<std::size_t>(st.range(0));
   const int lv = static_cast<int>(st.range(1));
   const auto& s = stream(n, lv);
@@ -50,7 +50,7 @@ void BM_Fit(benchmark::State& st) {
   st.counters["worst_mm"] = pos;
   st.counters["worst_deg"] = ang;
 }
-BENCHMARK(BM_Fit)
+BENCHMARK(BM_FitPoses)
     ->ArgsProduct({{1000, 10000, 100000}, {0, 1}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
