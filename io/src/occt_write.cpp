@@ -92,6 +92,23 @@ Handle(TCollection_HAsciiString) hstr(const std::string& s) {
   return new TCollection_HAsciiString(s.c_str());
 }
 
+/// Writes a translated model to `path` through `print` (a STEP or IGES writer's Print) into a
+/// temporary file, flushed and checked before the rename: a full disk leaves no truncated file.
+template <typename Print>
+void print_atomically(const std::string& path, const char* format, Print print) {
+  AtomicOutput out(path);
+  {
+    std::ofstream f(out.temp_path(), std::ios::binary);
+    if (!f || !print(f))
+      throw Error(Errc::invalid_input, path + ": cannot write the " + format + " file");
+    f.close();
+    if (f.fail())
+      throw Error(Errc::invalid_input,
+                  path + ": writing the " + format + " file failed (disk full?)");
+  }
+  out.commit();
+}
+
 /// OpenCASCADE's progress, forwarded to io::report_progress under a stage name (ended with
 /// fraction 1 when the indicator goes).
 class SinkIndicator : public Message_ProgressIndicator {
@@ -135,15 +152,7 @@ void write_step_shape(const std::string& path, const TopoDS_Shape& shape, const 
   StepData_StepWriter sw(writer.Model());
   sw.FloatWriter().SetFormat("%.17E");  // round-trip precision (default prints ~12 digits)
   sw.SendModel(Handle(StepData_Protocol)::DownCast(writer.WS()->Protocol()));
-  AtomicOutput out(path);
-  {
-    std::ofstream f(out.temp_path(), std::ios::binary);
-    if (!f || !sw.Print(f)) throw Error(Errc::invalid_input, path + ": cannot write the STEP file");
-    f.close();  // flushed and checked before the rename: a full disk leaves no truncated file
-    if (f.fail())
-      throw Error(Errc::invalid_input, path + ": writing the STEP file failed (disk full?)");
-  }
-  out.commit();
+  print_atomically(path, "STEP", [&sw](std::ostream& f) { return sw.Print(f); });
 }
 
 /// Writes one geometry entity (`geom`), or a shape as IGES B-rep entities (`shape`).
@@ -178,15 +187,7 @@ void write_iges_model(const std::string& path, const Handle(Standard_Transient) 
   iw.SendStartLine(
       ("qmotion: " + (info.description.empty() ? info.product : info.description)).c_str());
   iw.SendModel(IGESSelect_WorkLibrary::DefineProtocol());
-  AtomicOutput out(path);
-  {
-    std::ofstream f(out.temp_path(), std::ios::binary);
-    if (!f || !iw.Print(f)) throw Error(Errc::invalid_input, path + ": cannot write the IGES file");
-    f.close();  // flushed and checked before the rename: a full disk leaves no truncated file
-    if (f.fail())
-      throw Error(Errc::invalid_input, path + ": writing the IGES file failed (disk full?)");
-  }
-  out.commit();
+  print_atomically(path, "IGES", [&iw](std::ostream& f) { return iw.Print(f); });
 }
 
 /// A wire through the curves in order (each an edge on its whole curve).

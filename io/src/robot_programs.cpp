@@ -262,7 +262,7 @@ PoseSet parse_krl(const std::string& text, const std::string& source,
     if (word == "DEF" || word == "GLOBAL" || word == "END" || word == "DEFDAT" ||
         word == "ENDDAT" || krl_harmless(u))
       continue;
-    if (word == "$TOOL" || word == "$BASE" || u.rfind("$TOOL", 0) == 0 || u.rfind("$BASE", 0) == 0)
+    if (u.rfind("$TOOL", 0) == 0 || u.rfind("$BASE", 0) == 0)
       refuse(s, construct(s.text) +
                     " changes the frame the targets are given in; give the poses in one frame");
     if (word == "PTP" || word == "LIN" || word == "CIRC") {
@@ -284,11 +284,8 @@ PoseSet parse_krl(const std::string& text, const std::string& source,
       for (const auto& a : args) set.poses.push_back(krl_target(a, s, names));
       continue;
     }
-    if (word == "DECL" || krl_declaration(s, names)) {
-      if (word == "DECL" && !krl_declaration(s, names))
-        refuse(s, "unreadable declaration " + construct(s.text));
-      continue;
-    }
+    if (krl_declaration(s, names)) continue;
+    if (word == "DECL") refuse(s, "unreadable declaration " + construct(s.text));
     if (word.size() > 4 && word.substr(word.size() - 4) == "_REL")
       refuse(s,
              construct(s.text) + " is a relative motion: its pose depends on where the robot is");

@@ -51,22 +51,6 @@ inline std::vector<double> clamped_knots(double a, double b, const std::vector<d
   return T;
 }
 
-/// The Schoenberg-Whitney condition for least squares on sorted parameters t: the n basis
-/// functions of degree p on T can each be given a parameter of its own inside its support,
-/// in order (then the collocation matrix has full column rank). Greedy, O(|t| + n).
-inline bool schoenberg_whitney(const std::vector<double>& T, int p, const std::vector<double>& t) {
-  const std::size_t n = T.size() - static_cast<std::size_t>(p) - 1;
-  std::size_t i = 0;
-  for (std::size_t j = 0; j < n; ++j) {
-    const double lo = T[j], hi = T[j + static_cast<std::size_t>(p) + 1];
-    const bool first = j == 0, last = j + 1 == n;
-    while (i < t.size() && (first ? t[i] < lo : !(t[i] > lo))) ++i;
-    if (i == t.size() || (last ? t[i] > hi : !(t[i] < hi))) return false;
-    ++i;
-  }
-  return true;
-}
-
 /// Values of the p + 1 basis functions non-zero on span j at x (The NURBS Book, A2.2),
 /// without allocating (p <= 25).
 inline void basis_values(const std::vector<double>& T, int j, int p, double x,
@@ -207,9 +191,10 @@ inline FitCandidate fit_on_knots(const FitData& d, std::vector<double> x, int* s
   c.ang.resize(n);
   // Unit targets fix Q_rot's norm at every pose, which the rotation does not need: where
   // they miss the angle, two rounds with the norm free.
-  for (int round = 0; round < 2 && angles() > d.opt.angle_tol_deg; ++round)
+  for (int round = 0; round < 2 && angles() > d.opt.angle_tol_deg; ++round) {
     c.rot = free_norm_rotation(d, cr, d.opt.k, c.rot);
-  angles();
+    if (round == 1) angles();  // the last round's angles (the test measured the others)
+  }
   const Eigen::MatrixXd Sv = collocate(ct, c.trans);
   c.meets = true;
   for (std::size_t i = 0; i < n; ++i) {
@@ -232,13 +217,6 @@ inline MotionFactors<double> candidate_factors(const FitData& d, const FitCandid
 /// Index of the span of the interior knots x (0 .. x.size()) holding parameter v.
 inline std::size_t span_of(const std::vector<double>& x, double v) {
   return static_cast<std::size_t>(std::upper_bound(x.begin(), x.end(), v) - x.begin());
-}
-
-/// Both factors' least squares are well posed on x.
-inline bool well_posed(const FitData& d, const std::vector<double>& x) {
-  const double a = d.t.front(), b = d.t.back();
-  return schoenberg_whitney(clamped_knots(a, b, x, d.opt.k), d.opt.k, d.t) &&
-         schoenberg_whitney(clamped_knots(a, b, x, d.opt.l), d.opt.l, d.t);
 }
 
 /// A candidate meets the tolerances and its rotational part has no zero (no pole).
@@ -445,7 +423,6 @@ struct KnotSearch {
         (i % 2 == static_cast<std::size_t>(round % 2) ? gone : keep).push_back(best.x[i]);
       bool removed = false;
       for (int attempt = 0; attempt < 40 && !gone.empty(); ++attempt) {
-        if (!well_posed(d, keep)) break;
         FitCandidate c = fit_on_knots(d, keep, &rep.solves);
         if (acceptable(d, c)) {
           rep.knots_removed += static_cast<int>(gone.size());
@@ -575,15 +552,12 @@ inline FittedMotion fit_bspline(const std::vector<Pose<double>>& poses,
   prov.angle_tolerance_deg = opt.angle_tol_deg;
   QMotion<double> curve{Basis::bspline, detail::compose(f)};
   prov.residuals = pose_residuals(curve, poses, t);
-  FittedMotion out{Motion<double>(std::move(curve), std::move(f), std::move(prov)), rep};
-  const FitReport dev = fit_deviations(out.motion.curve, poses, t);
-  out.report.position_deviation = dev.position_deviation;
-  out.report.angle_deviation_deg = dev.angle_deviation_deg;
-  out.report.worst_position = dev.worst_position;
-  out.report.worst_position_pose = dev.worst_position_pose;
-  out.report.worst_angle_deg = dev.worst_angle_deg;
-  out.report.worst_angle_pose = dev.worst_angle_pose;
-  return out;
+  FitReport report = fit_deviations(curve, poses, t);
+  report.insertion_rounds = rep.insertion_rounds;
+  report.knots_removed = rep.knots_removed;
+  report.solves = rep.solves;
+  return FittedMotion{Motion<double>(std::move(curve), std::move(f), std::move(prov)),
+                      std::move(report)};
 }
 
 }  // namespace qmotion::kernel
