@@ -5,6 +5,7 @@
 #include <qmotion/api/export.hpp>
 #include <qmotion/api/toolpath.hpp>
 #include <qmotion/io/json_number.hpp>
+#include <qmotion/io/machine_file.hpp>
 #include <qmotion/io/qspline_file.hpp>
 
 #include "command.hpp"
@@ -16,9 +17,11 @@ Command add_toolpath(CLI::App& app) {
       "toolpath",
       "Write cutter-location points along the trajectory of --point with the tool axis "
       "R(t)(i,j,k): every chord within --chord-tol of the exact trajectory and every axis within "
-      "--angle-tol of the chord's blend, certified from the control points (APT, CSV, G-code)");
+      "--angle-tol of the chord's blend, certified from the control points for the numbers as "
+      "written and, on a 5-axis machine, for its linear interpolation of its axes (APT, CSV, "
+      "G-code)");
   struct Options {
-    std::string motion, point, axis = "0,0,1", chord_tol, angle_tol, max_step, feed;
+    std::string motion, point, axis = "0,0,1", chord_tol, angle_tol, max_step, feed, limits;
     qmotion::ToolpathOptions options;
   };
   auto o = std::make_shared<Options>();
@@ -34,10 +37,21 @@ Command add_toolpath(CLI::App& app) {
   sub->add_option("--feed", o->feed, "Feed per minute for APT FEDRAT and G-code F (default 1000)");
   sub->add_flag("--arc-length", o->options.arc_length, "CSV: add the arc length s");
   sub->add_option("--rotary", o->options.rotary,
-                  "G-code: ac for a table-tilting A/C machine (Rx(A) Rz(C) takes the tool axis to "
-                  "+Z, pivot at the workpiece origin; C unwrapped, the branch kept continuous)");
+                  "G-code: ac or bc for a table-tilting A/C or B/C machine (Rx(A) Rz(C) or "
+                  "Ry(B) Rz(C) takes the tool axis to +Z, pivot at the workpiece origin; the "
+                  "branch nearer the previous block, C unwrapped)");
+  sub->add_option("--machine", o->options.machine_file,
+                  "G-code: a machine file (JSON: two rotary axes on the table or the head, with "
+                  "directions and pivots, optional velocity limits) instead of --rotary");
   sub->add_flag("--c-hold", o->options.c_hold,
-                "--rotary ac: keep the previous C where the axis is vertical (else refused)");
+                "--rotary/--machine: keep the previous angle of the axis that is undefined where "
+                "the tool lies along it (C where the axis is vertical; else refused)");
+  sub->add_option("--feed-mode", o->options.feed_mode,
+                  "G-code: units-per-minute (G94, default) or inverse-time (G93: an F per block so "
+                  "the tool tip moves at --feed along the exact trajectory)");
+  sub->add_option("--axis-limits", o->limits,
+                  "With inverse-time: velocity limits X=v,Y=v,Z=v,A=v,… (output unit or degrees "
+                  "per minute); blocks slow down so that no axis exceeds its limit");
   sub->add_flag("--nurbs", o->options.nurbs,
                 "G-code: Fanuc-style G06.2 NURBS blocks of degree <= 3 instead of G1 moves: the "
                 "exact trajectory where its degree allows, else a cubic fit, within --chord-tol "
@@ -59,6 +73,8 @@ Command add_toolpath(CLI::App& app) {
             if (!o->max_step.empty())
               opt.max_step = io::parse_number_text(o->max_step, "--max-step").value;
             if (!o->feed.empty()) opt.feed = io::parse_number_text(o->feed, "--feed").value;
+            if (!o->limits.empty())
+              opt.axis_limits = io::parse_axis_limits(o->limits, "--axis-limits");
             const auto tp = qmotion::toolpath(io::load_motion(o->motion), opt);
             std::cout << tp.report().dump(2) << "\n";
             if (tp.nurbs)

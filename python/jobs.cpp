@@ -8,8 +8,18 @@ namespace {
 py::object toolpath_call(const Motion& motion, const std::string& path, const py::object& point,
                          const py::object& axis, double chord_tol, double angle_tol,
                          double max_step, double feed, bool arc_length, const std::string& rotary,
-                         bool c_hold, const std::string& units, bool nurbs) {
+                         bool c_hold, const std::string& units, bool nurbs,
+                         const std::string& machine, const std::string& feed_mode,
+                         const std::map<std::string, double>& axis_limits) {
   ToolpathOptions o;
+  o.machine_file = machine;
+  o.feed_mode = feed_mode;
+  for (const auto& [word, v] : axis_limits) {
+    if (word.size() != 1)
+      throw Error(Errc::invalid_input,
+                  "axis_limits: " + word + ": expected an axis word X, Y, Z, A, B or C");
+    o.axis_limits[word[0]] = v;
+  }
   o.nurbs = nurbs;
   o.units = units;
   o.output = path;
@@ -124,24 +134,32 @@ void bind_jobs(py::module_& m) {
       "`qmotion toolpath`: cutter-location points along the trajectory of point with the tool "
       "axis R(t) axis, each chord within chord_tol of the exact trajectory and each axis within "
       "angle_tol degrees of the chord's blend (certified from control points), written to path "
-      "(.apt/.cls, .csv, .nc/.ngc; rotary='ac' for a table-tilting A/C machine; nurbs=True for "
-      "G06.2 NURBS blocks of degree <= 3 with a certified deviation). Returns the report dict: "
-      "points, path_length, machining_time_min, max_chord_deviation_bound, ... (with nurbs: "
-      "degree, control_points, spans, exact, max_deviation_bound, max_deviation_measured)";
+      "(.apt/.cls, .csv, .nc/.ngc; rotary='ac' or 'bc' for a table-tilting machine, or machine= "
+      "a machine file, the bounds then covering the machine's linear interpolation of its axes; "
+      "feed_mode='inverse-time' for G93 with axis_limits={'X': 20000, 'C': 7200}; nurbs=True "
+      "for G06.2 NURBS blocks of degree <= 3 with a certified deviation). Every bound holds for "
+      "the numbers as written. Returns the report dict: points, path_length, "
+      "machining_time_min, max_chord_deviation_bound, rounding_bound, ... (with a machine: "
+      "machine, machine_interpolation_bound, ...; with nurbs: degree, control_points, spans, "
+      "exact, max_deviation_bound, max_deviation_measured)";
   m.def(
       "toolpath",
       [](const PyMotion& p, const std::string& path, const py::object& point,
          const py::object& axis, double chord_tol, double angle_tol, double max_step, double feed,
          bool arc_length, const std::string& rotary, bool c_hold, const std::string& units,
-         bool nurbs) {
+         bool nurbs, const std::string& machine, const std::string& feed_mode,
+         const std::map<std::string, double>& axis_limits) {
         return toolpath_call(p.motion, path, point, axis, chord_tol, angle_tol, max_step, feed,
-                             arc_length, rotary, c_hold, units, nurbs);
+                             arc_length, rotary, c_hold, units, nurbs, machine, feed_mode,
+                             axis_limits);
       },
       py::arg("motion"), py::arg("path"), py::arg("point"),
       py::arg("axis") = std::vector<double>{0, 0, 1}, py::arg("chord_tol"),
       py::arg("angle_tol") = 0.5, py::arg("max_step") = 0.0, py::arg("feed") = 1000.0,
       py::arg("arc_length") = false, py::arg("rotary") = "", py::arg("c_hold") = false,
-      py::arg("units") = "", py::arg("nurbs") = false, toolpath_doc);
+      py::arg("units") = "", py::arg("nurbs") = false, py::arg("machine") = "",
+      py::arg("feed_mode") = "", py::arg("axis_limits") = std::map<std::string, double>{},
+      toolpath_doc);
 #ifdef QMOTION_WITH_CGAL
   m.def(
       "check_exact",

@@ -1,28 +1,24 @@
-// api/src/toolpath.cpp
+// api/src/toolpath.cpp: `qmotion toolpath`: the certified sampler, what each format writes,
+// the machine's axes, and the feeds (docs/cam.md).
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <functional>
 #include <qmotion/api/toolpath.hpp>
-#include <qmotion/cam/cam_nurbs.hpp>
-#include <qmotion/cam/tool_trajectories.hpp>
 #include <qmotion/io/atomic_file.hpp>
+#include <qmotion/io/machine_file.hpp>
 #include <qmotion/io/progress.hpp>
 #include <qmotion/io/units.hpp>
 #include <qmotion/kernel/error.hpp>
-#include <qmotion/sweep/fit.hpp>
-#include <qmotion/sweep/solid.hpp>
-#include <qmotion/sweep/surface.hpp>
-#include <sstream>
+
+#include "toolpath_detail.hpp"
 
 namespace qmotion {
-using namespace io;  // NOLINT: the formats this call reads and writes
+using namespace io;               // NOLINT: the formats this call reads and writes
+using namespace toolpath_detail;  // NOLINT: the writers' shared helpers
 namespace {
 
 using json = nlohmann::json;
-constexpr double kPi = 3.14159265358979323846;
 
 enum class CamFormat { apt, csv, gcode };
 
@@ -48,65 +44,83 @@ void check_options(const ToolpathOptions& o, CamFormat f) {
     throw Error(Errc::invalid_input, "--max-step: expected a length >= 0 (0: no cap)");
   if (!(o.feed > 0) || !std::isfinite(o.feed))
     throw Error(Errc::invalid_input, "--feed: expected a positive feed rate");
-  if (!o.rotary.empty() && o.rotary != "ac")
-    throw Error(Errc::invalid_input, "--rotary " + o.rotary + ": expected ac");
-  if (!o.rotary.empty() && f != CamFormat::gcode)
-    throw Error(Errc::invalid_input, "--rotary is for G-code output (.nc, .ngc)");
-  if (o.c_hold && o.rotary.empty()) throw Error(Errc::invalid_input, "--c-hold is for --rotary ac");
+  if (!o.rotary.empty() && o.rotary != "ac" && o.rotary != "bc")
+    throw Error(Errc::invalid_input, "--rotary " + o.rotary + ": expected ac or bc");
+  const int machines = !o.rotary.empty() + !o.machine_file.empty() + o.machine.has_value();
+  if (machines > 1)
+    throw Error(Errc::invalid_input, "--rotary and --machine both name a machine; give one");
+  if (machines && f != CamFormat::gcode)
+    throw Error(Errc::invalid_input, std::string(o.rotary.empty() ? "--machine" : "--rotary") +
+                                         " is for G-code output (.nc, .ngc)");
+  if (o.c_hold && !machines)
+    throw Error(Errc::invalid_input, "--c-hold is for a 5-axis machine (--rotary or --machine)");
   if (o.nurbs && f != CamFormat::gcode)
     throw Error(Errc::invalid_input, "--nurbs is for G-code output (.nc, .ngc)");
-  if (o.nurbs && !o.rotary.empty())
+  if (o.nurbs && machines)
     throw Error(Errc::invalid_input,
-                "--nurbs writes 3-axis G06.2 blocks; it does not combine with --rotary");
+                "--nurbs writes 3-axis G06.2 blocks; it does not combine with --rotary or "
+                "--machine");
   if (o.nurbs && o.max_step > 0)
     throw Error(Errc::invalid_input, "--max-step caps linear moves; it does not apply to --nurbs");
   if (o.arc_length && f != CamFormat::csv)
     throw Error(Errc::invalid_input, "--arc-length is for CSV output (.csv)");
-}
-
-/// The table-tilting A/C angles (degrees) that bring the tool axis k onto machine +Z:
-/// Rx(A) Rz(C) k = (0, 0, 1), C = atan2(i, j), A = atan2(sqrt(i^2 + j^2), k), or the other
-/// branch (-A, C + 180); the branch nearer the previous angles, C unwrapped.
-std::pair<double, double> ac_angles(const Eigen::Vector3d& k, const std::pair<double, double>* prev,
-                                    bool c_hold, double t) {
-  const double rho = std::hypot(k(0), k(1));
-  if (rho < 1e-12) {
-    if (!c_hold)
+  if (!o.feed_mode.empty() && o.feed_mode != "units-per-minute" && o.feed_mode != "inverse-time")
+    throw Error(Errc::invalid_input,
+                "--feed-mode " + o.feed_mode + ": expected units-per-minute or inverse-time");
+  const bool inverse = o.feed_mode == "inverse-time";
+  if (inverse && f != CamFormat::gcode)
+    throw Error(Errc::invalid_input,
+                "--feed-mode inverse-time writes G93 G-code (.nc, .ngc); APT and CSV carry no "
+                "feed per block");
+  if (inverse && o.nurbs)
+    throw Error(Errc::invalid_input,
+                "--feed-mode inverse-time is for G1 moves; --nurbs blocks take a feed per minute");
+  if (!o.axis_limits.empty() && !inverse)
+    throw Error(Errc::invalid_input,
+                "--axis-limits needs --feed-mode inverse-time: one feed per minute cannot keep "
+                "every axis within its limit");
+  for (const auto& [word, v] : o.axis_limits)
+    if (!(v > 0) || !std::isfinite(v))
       throw Error(Errc::invalid_input,
-                  "--rotary ac: the tool axis is vertical at t = " + std::to_string(t) +
-                      " (|k| = 1), where C is undefined; use --c-hold to keep the previous C");
-    const double c = prev ? prev->second : 0.0;
-    return {k(2) > 0 ? 0.0 : 180.0, c};
-  }
-  const double a = std::atan2(rho, k(2)) * 180 / kPi, c = std::atan2(k(0), k(1)) * 180 / kPi;
-  if (!prev) return {a, c};
-  std::pair<double, double> best{0, 0};
-  double cost = HUGE_VAL;
-  for (const auto& [aa, cc] :
-       {std::pair<double, double>(a, c), std::pair<double, double>(-a, c + 180)}) {
-    const double cu = cc + 360 * std::round((prev->second - cc) / 360);  // unwrapped
-    const double dcost = std::abs(aa - prev->first) + std::abs(cu - prev->second);
-    if (dcost < cost) {
-      cost = dcost;
-      best = {aa, cu};
-    }
-  }
-  return best;
+                  "--axis-limits " + std::string(1, word) + ": expected a positive velocity limit");
 }
 
-Eigen::Matrix3d ac_matrix(double a_deg, double c_deg) {
-  const double a = a_deg * kPi / 180, c = c_deg * kPi / 180;
-  Eigen::Matrix3d rx, rz;
-  rx << 1, 0, 0, 0, std::cos(a), -std::sin(a), 0, std::sin(a), std::cos(a);
-  rz << std::cos(c), -std::sin(c), 0, std::sin(c), std::cos(c), 0, 0, 0, 1;
-  return rx * rz;
-}
-
-std::string num(double x, int digits = 6) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", digits,
-                std::abs(x) < 0.5 * std::pow(10.0, -digits) ? 0.0 : x);
-  return buf;
+/// The machine of the options in the output unit (its pivots converted), with the velocity
+/// limits that apply: a machine file's, overridden word by word by axis_limits.
+std::optional<cam::Machine> resolve_machine(const ToolpathOptions& o, const std::string& units,
+                                            std::map<char, double>& limits) {
+  std::optional<cam::Machine> m;
+  std::map<char, double> file_limits;
+  double file_factor = 1;  // the machine file's unit per minute -> the output unit per minute
+  if (o.machine) {
+    m = *o.machine;
+    const std::string problem = cam::machine_problem(*m);
+    if (!problem.empty()) throw Error(Errc::invalid_input, "machine " + m->name + ": " + problem);
+  } else if (!o.machine_file.empty()) {
+    MachineFile mf = read_machine_file(o.machine_file);
+    m = mf.machine;
+    file_limits = mf.velocity;
+    file_factor = unit_factor(m->units, units);
+  } else if (!o.rotary.empty()) {
+    m = cam::builtin_machine(o.rotary);
+  }
+  if (m) {
+    const double f = unit_factor(m->units, units);
+    for (auto& ax : m->axes) ax.pivot *= f;
+    m->units = units;
+  }
+  std::string words = "XYZ";
+  if (m)
+    for (const auto& ax : m->axes) words += ax.name;
+  for (const auto& [w, v] : file_limits)
+    limits[w] = w == 'X' || w == 'Y' || w == 'Z' ? v * file_factor : v;
+  for (const auto& [w, v] : o.axis_limits) {
+    if (words.find(w) == std::string::npos)
+      throw Error(Errc::invalid_input, "--axis-limits " + std::string(1, w) +
+                                           ": not an axis of this machine (" + words + ")");
+    limits[w] = v;
+  }
+  return m;
 }
 
 /// An APT statement folded at 72 columns with '$' continuations, breaking after commas.
@@ -121,98 +135,49 @@ void apt_line(std::ostringstream& os, const std::string& s) {
   os << rest << "\n";
 }
 
-/// The length of the exact trajectory over [t0, t1] (Gauss-Legendre on the velocity).
-double arc_length(const cam::ToolTrajectories& src, double t0, double t1) {
-  double len = 0;
-  for (const auto& [node, w] : sweep::detail::gauss_legendre())
-    len += w * (t1 - t0) / 2 * src.exact_velocity((t0 + t1) / 2 + (t1 - t0) / 2 * node).norm();
-  return len;
+/// Decimals each format prints: of points (and machine XYZ), of axes (and machine angles).
+std::pair<int, int> decimals(CamFormat f) {
+  return f == CamFormat::csv ? std::pair<int, int>(9, 12) : std::pair<int, int>(6, 9);
 }
 
-/// The fewest decimals (at least `least`) that print every value so that it reads back
-/// unchanged.
-int exact_decimals(const std::vector<double>& v, int least) {
-  for (int d = least; d < 17; ++d)
-    if (std::all_of(v.begin(), v.end(),
-                    [&](double x) { return std::strtod(num(x, d).c_str(), nullptr) == x; }))
-      return d;
-  return 17;
-}
-
-/// Decimals of the NURBS G-code's coordinates and weights.
-constexpr double kNurbsQuantum = 1e6;
-
-/// `--nurbs`: the trajectory as a NURBS of degree <= 3 (cam::cam_nurbs) within the
-/// tolerance `tol` (the motion's unit) less the quaternion spline's fit, certified for the
-/// numbers as written; measured against the exact motion at 64 points per span; Fanuc
-/// G06.2 blocks into os.
-void nurbs_toolpath(Toolpath& tp, const cam::ToolTrajectories& src, double k, double tol,
-                    std::ostringstream& os) {
-  cam::CamNurbsOptions no;
-  no.tol = tol - src.fit_error;
-  no.written = [k](const Eigen::Vector4d& v) {
-    const double w = std::round(v(0) * kNurbsQuantum) / kNurbsQuantum;
-    Eigen::Vector3d x = v.tail<3>() / v(0) * k;
-    for (int i = 0; i < 3; ++i) x(i) = std::round(x(i) * kNurbsQuantum) / kNurbsQuantum;
-    Eigen::Vector4d r;
-    r << w, w * x / k;
-    return r;
-  };
-  const cam::CamNurbs cn = cam::cam_nurbs(src.h, src.exact_point, src.breaks, src.continuity, no);
-  NurbsToolpath nt;
-  nt.curve = kernel::map_coeffs(cn.curve, [k](const Eigen::Vector4d& v) {
-    Eigen::Vector4d r;
-    r << v(0), v.tail<3>() * k;
-    return r;
-  });
-  nt.t_knots = cn.t_knots;
-  nt.exact = cn.exact;
-  nt.spans = cn.spans;
-  nt.max_deviation_bound = (cn.bound + src.fit_error) * k;
-  for (const auto& v : nt.curve.ctrl())
-    if (!(v(0) >= 1e-4 && v(0) <= 99.9999))
-      throw Error(Errc::internal, "a NURBS weight outside 0.0001..99.9999: " + num(v(0)));
-  // Dense confirmation and the path length, span by span (span j of the curve stands for
-  // span j of t_knots).
-  std::vector<double> xt = cn.t_knots;
-  xt.erase(std::unique(xt.begin(), xt.end()), xt.end());
-  const std::vector<double> xc = nt.curve.breakpoints();
-  for (std::size_t j = 0; j + 1 < xt.size(); ++j) {
-    const auto piece = kernel::bezier_piece(nt.curve, xc[j], xc[j + 1]);
-    for (int s = 0; s <= 64; ++s) {
-      const Eigen::Vector4d c = kernel::evaluate(piece, xc[j] + (xc[j + 1] - xc[j]) * s / 64);
-      const Eigen::Vector3d e = src.exact_point(xt[j] + (xt[j + 1] - xt[j]) * s / 64) * k;
-      nt.max_deviation_measured =
-          std::max(nt.max_deviation_measured, (Eigen::Vector3d(c.tail<3>() / c(0)) - e).norm());
+/// Per G1 block of an inverse-time program: the minutes it takes (the exact arc at the
+/// feed, longer where an axis limit asks) into tp, and the F written: 1/minutes rounded down
+/// (so no axis goes faster) to enough decimals that the feed it implies is within 1e-8
+/// relative, with those decimals.
+std::vector<std::pair<double, int>> inverse_time(Toolpath& tp, const std::vector<double>& arc) {
+  std::vector<std::pair<double, int>> feeds;
+  auto word_value = [&](std::size_t i, char w) {
+    if (tp.machine) {
+      if (w == 'X' || w == 'Y' || w == 'Z')
+        return tp.machine_axes[i][static_cast<std::size_t>(w - 'X')];
+      return tp.machine_axes[i][tp.machine->axes[0].name == w ? 3 : 4];
     }
-    for (int s = 0; s < 4; ++s)
-      tp.path_length += k * arc_length(src, xt[j] + (xt[j + 1] - xt[j]) * s / 4,
-                                       xt[j] + (xt[j + 1] - xt[j]) * (s + 1) / 4);
-  }
-  // The blocks: the first control point is the current position (a rapid move there), the
-  // first block carries G06.2, the order P, the first knot and the feed; every control point
-  // its knot; the last `order` knots stand alone.
-  const auto& c = nt.curve;
-  const int order = c.degree() + 1, kd = exact_decimals(c.knots(), 9);
-  const std::size_t n = c.ctrl().size();
-  std::ostringstream head;
-  head.precision(3);
-  head << "(qmotion toolpath: NURBS of degree " << c.degree() << ", " << n << " control points, "
-       << nt.spans << (nt.spans == 1 ? " span, " : " spans, ")
-       << (nt.exact ? "the exact trajectory" : "a fit")
-       << ", certified deviation <= " << nt.max_deviation_bound << " " << tp.units << ")\n";
-  os << head.str() << (tp.units == "in" ? "G20" : "G21") << " G90 G17 G94\n";
-  auto xyz = [](const Eigen::Vector4d& v) {
-    return " X" + num(v(1) / v(0)) + " Y" + num(v(2) / v(0)) + " Z" + num(v(3) / v(0));
+    return tp.samples[i].written.point(w - 'X');
   };
-  os << "G0" << xyz(c.ctrl().front()) << "\n";
-  for (std::size_t i = 0; i < n; ++i)
-    os << (i == 0 ? "G06.2 P" + std::to_string(order) + " " : "") << "K" << num(c.knots()[i], kd)
-       << xyz(c.ctrl()[i]) << " R" << num(c.ctrl()[i](0)) << (i == 0 ? " F" + num(tp.feed, 4) : "")
-       << "\n";
-  for (std::size_t i = n; i < c.knots().size(); ++i) os << "K" << num(c.knots()[i], kd) << "\n";
-  os << "M2\n";
-  tp.nurbs = std::move(nt);
+  for (std::size_t i = 0; i + 1 < tp.samples.size(); ++i) {
+    double minutes = (arc[i + 1] - arc[i]) / tp.feed;
+    bool limited = false;
+    for (const auto& [w, v] : tp.axis_limits) {
+      const double need = std::abs(word_value(i + 1, w) - word_value(i, w)) / v;
+      if (need > minutes) {
+        minutes = need;
+        limited = true;
+      }
+    }
+    if (!(minutes > 1e-12))
+      throw Error(Errc::invalid_input,
+                  "--feed-mode inverse-time: the tool tip stands still between t = " +
+                      std::to_string(tp.samples[i].t) + " and " +
+                      std::to_string(tp.samples[i + 1].t) +
+                      " while the axes move; give --axis-limits for them so the block has a time");
+    tp.limited_blocks += limited;
+    const double f = 1 / minutes;
+    const int d = std::clamp(8 - static_cast<int>(std::floor(std::log10(f))), 4, 15);
+    const double q = std::pow(10.0, d);
+    feeds.emplace_back(std::floor(f * q) / q, d);
+    tp.block_minutes.push_back(1 / feeds.back().first);
+  }
+  return feeds;
 }
 
 }  // namespace
@@ -235,7 +200,8 @@ json Toolpath::report() const {
                 {"units", units},
                 {"path_length", path_length},
                 {"feed", feed},
-                {"machining_time_min", path_length / feed},
+                {"feed_mode", feed_mode},
+                {"machining_time_min", machining_time_min},
                 {"chord_tolerance", chord_tol},
                 {"max_deviation_bound", nurbs->max_deviation_bound},
                 {"max_deviation_measured", nurbs->max_deviation_measured}};
@@ -246,13 +212,33 @@ json Toolpath::report() const {
          {"units", units},
          {"path_length", path_length},
          {"feed", feed},
-         {"machining_time_min", path_length / feed},
+         {"feed_mode", feed_mode},
+         {"machining_time_min", machining_time_min},
          {"chord_tolerance", chord_tol},
          {"max_chord_deviation_bound", max_chord_bound},
          {"max_chord_deviation_measured", max_chord_measured},
+         {"rounding_bound", rounding_bound},
          {"angle_tolerance_deg", angle_tol_deg},
          {"max_angle_deviation_bound_deg", max_angle_bound_deg}};
-  if (!a_deg.empty()) j["rotary"] = "ac";
+  if (machine) {
+    json axes = json::array();
+    for (const auto& ax : machine->axes)
+      axes.push_back({{"name", std::string(1, ax.name)},
+                      {"on", ax.head ? "head" : "table"},
+                      {"direction", {ax.direction(0), ax.direction(1), ax.direction(2)}},
+                      {"pivot", {ax.pivot(0), ax.pivot(1), ax.pivot(2)}}});
+    j["machine"] = {{"name", machine->name}, {"axes", axes}};
+    j["machine_interpolation_bound"] = machine_bound;
+    j["machine_interpolation_angle_bound_deg"] = machine_angle_bound_deg;
+    j["machine_interpolation_measured"] = machine_measured;
+    j["max_tip_deviation_measured"] = tip_measured;
+  }
+  if (!axis_limits.empty()) {
+    json l = json::object();
+    for (const auto& [w, v] : axis_limits) l[std::string(1, w)] = v;
+    j["axis_limits"] = l;
+    j["limited_blocks"] = limited_blocks;
+  }
   return j;
 }
 
@@ -272,60 +258,129 @@ Toolpath toolpath(const Motion& motion, const ToolpathOptions& o) {
   } else {
     tp.units = f == CamFormat::csv ? munits : munits == "in" ? "in" : "mm";
   }
-  const double k = unit_factor(munits, tp.units);  // motion unit -> output unit
-  const double tol = o.chord_tol / k;              // in the motion's unit
-  const cam::ToolTrajectories src = cam::tool_trajectories(motion, o.point, o.axis, tol);
-  tp.chord_tol = o.chord_tol;
-  tp.angle_tol_deg = o.angle_tol_deg;
-  tp.feed = o.feed;
-  tp.path = o.output;
+  tp.machine = resolve_machine(o, tp.units, tp.axis_limits);
+  if (!o.feed_mode.empty()) tp.feed_mode = o.feed_mode;
+  if (tp.feed_mode != "inverse-time") tp.axis_limits.clear();  // a file's: the controller's
+  const double k = unit_factor(munits, tp.units);              // motion unit -> output unit
+  const double tol = o.chord_tol / k;                          // in the motion's unit
+  const auto [point_digits, axis_digits] = decimals(f);
+  // The written points move by up to sqrt(3)/2 of the last printed decimal.
+  const double quantum = std::pow(10.0, -point_digits);
   if (o.nurbs && o.chord_tol < 10 / kNurbsQuantum) {
     std::ostringstream m;
     m << "--chord-tol " << o.chord_tol << ": --nurbs writes 6 decimals, so it certifies "
       << "tolerances from 1e-05 (in the output unit)";
     throw Error(Errc::invalid_input, m.str());
   }
+  if (o.chord_tol < 10 * quantum) {
+    std::ostringstream m;
+    m << "--chord-tol " << o.chord_tol << ": " << (f == CamFormat::csv ? "CSV" : "the file")
+      << " writes " << point_digits << " decimals, so it certifies tolerances from " << 10 * quantum
+      << " (in the output unit)";
+    throw Error(Errc::invalid_input, m.str());
+  }
+  const cam::ToolTrajectories src = cam::tool_trajectories(motion, o.point, o.axis, tol);
+  tp.chord_tol = o.chord_tol;
+  tp.angle_tol_deg = o.angle_tol_deg;
+  tp.feed = o.feed;
+  tp.path = o.output;
   if (o.nurbs) {
     std::ostringstream os;
     nurbs_toolpath(tp, src, k, tol, os);
+    tp.machining_time_min = tp.path_length / tp.feed;
     write_file_atomic(o.output, os.str());
     return tp;
   }
   cam::SamplerOptions so;
   so.chord_tol = tol - src.fit_error;
-  so.angle_tol = o.angle_tol_deg * kPi / 180;
+  // The fitted axis: its tip 100 units out is within fit_error of the exact one.
+  const double fit_angle = std::asin(std::min(1.0, 2 * src.fit_error / 100));
+  so.angle_tol = o.angle_tol_deg * kPi / 180 - fit_angle;
   if (o.max_step > 0) so.max_step = o.max_step / k;
-  so.progress = [](double f) { report_progress("toolpath", 0.8 * f); };
+  so.progress = [](double x) { report_progress("toolpath", 0.8 * x); };
+  const std::optional<cam::Machine>& machine = tp.machine;
+  so.write = [&, pd = point_digits, ad = axis_digits](double t, const Eigen::Vector3d& p,
+                                                      const Eigen::Vector3d& kd,
+                                                      const cam::WrittenEnd* prev) {
+    cam::WrittenEnd w;
+    if (machine) {
+      cam::MachineAxes q = cam::inverse_kinematics(
+          *machine, p * k, kd, prev ? prev->machine : cam::MachineAxes{}, o.c_hold,
+          (o.rotary.empty() ? "--machine " + machine->name : "--rotary " + o.rotary) +
+              " at t = " + std::to_string(t));
+      for (std::size_t i = 0; i < 5; ++i) q[i] = rounded(q[i], i < 3 ? pd : ad);
+      const auto [pw, kw] = cam::forward_kinematics(*machine, q);
+      w.point = pw / k;
+      w.axis = kw;
+      w.machine = q;
+      return w;
+    }
+    for (int i = 0; i < 3; ++i) {
+      w.point(i) = rounded(p(i) * k, pd) / k;
+      w.axis(i) = f == CamFormat::gcode ? kd(i) : rounded(kd(i), ad);  // G1: no axis written
+    }
+    return w;
+  };
+  if (machine)
+    so.between = [&](const cam::WrittenEnd& w0, const cam::WrittenEnd& w1) {
+      const auto [e, ea] = cam::interpolation_bound(*machine, w0.machine, w1.machine);
+      return std::pair<double, double>(e / k, ea);
+    };
   const auto sampled = cam::sample_toolpath(src.h, src.d, so);
   tp.samples = sampled.samples;
   tp.max_chord_bound = (sampled.max_chord_bound + src.fit_error) * k;
-  tp.max_angle_bound_deg = sampled.max_angle_bound * 180 / kPi;
-  // The arc length of the exact trajectory up to every sample, and the chords measured
-  // against it.
+  tp.max_angle_bound_deg = (sampled.max_angle_bound + fit_angle) * 180 / kPi;
+  tp.rounding_bound = sampled.max_rounding * k;
+  tp.machine_bound = sampled.max_between * k;
+  tp.machine_angle_bound_deg = sampled.max_between_angle * 180 / kPi;
+  // The arc length of the exact trajectory up to every sample, and the written chords (and
+  // what the machine runs) measured against it.
   std::vector<double> arc{0.0};
+  std::vector<Eigen::Vector3d> exact(33);
   for (std::size_t i = 0; i + 1 < tp.samples.size(); ++i) {
     if (i % 256 == 0)
       report_progress("toolpath",
                       0.8 + 0.2 * static_cast<double>(i) / static_cast<double>(tp.samples.size()));
     const double t0 = tp.samples[i].t, t1 = tp.samples[i + 1].t;
+    const cam::WrittenEnd &w0 = tp.samples[i].written, &w1 = tp.samples[i + 1].written;
     arc.push_back(arc.back() + arc_length(src, t0, t1) * k);
-    for (int s = 1; s < 32; ++s)
-      tp.max_chord_measured = std::max(
-          tp.max_chord_measured,
-          cam::detail::point_segment_distance(src.exact_point(t0 + (t1 - t0) * s / 32),
-                                              tp.samples[i].point, tp.samples[i + 1].point));
+    for (int s = 0; s <= 32; ++s) {
+      exact[static_cast<std::size_t>(s)] = src.exact_point(t0 + (t1 - t0) * s / 32);
+      tp.max_chord_measured = std::max(tp.max_chord_measured,
+                                       cam::detail::point_segment_distance(
+                                           exact[static_cast<std::size_t>(s)], w0.point, w1.point));
+    }
+    if (machine)
+      for (int s = 1; s < 16; ++s) {
+        cam::MachineAxes q;
+        for (std::size_t j = 0; j < 5; ++j)
+          q[j] = w0.machine[j] + (w1.machine[j] - w0.machine[j]) * s / 16;
+        const Eigen::Vector3d x = cam::forward_kinematics(*machine, q).first / k;
+        double d = HUGE_VAL;
+        for (std::size_t e = 0; e + 1 < exact.size(); ++e)
+          d = std::min(d, cam::detail::point_segment_distance(x, exact[e], exact[e + 1]));
+        tp.tip_measured = std::max(tp.tip_measured, d);
+        tp.machine_measured = std::max(
+            tp.machine_measured, (x - (w0.point + (w1.point - w0.point) * (s / 16.0))).norm());
+      }
   }
   tp.path_length = arc.back();
   report_progress("toolpath", 1.0);
   tp.max_chord_measured *= k;
-  for (auto& s : tp.samples) s.point *= k;
-  if (!o.rotary.empty()) {
-    std::pair<double, double> prev;
-    for (std::size_t i = 0; i < tp.samples.size(); ++i) {
-      prev = ac_angles(tp.samples[i].axis, i ? &prev : nullptr, o.c_hold, tp.samples[i].t);
-      tp.a_deg.push_back(prev.first);
-      tp.c_deg.push_back(prev.second);
-    }
+  tp.machine_measured *= k;
+  tp.tip_measured *= k;
+  for (auto& s : tp.samples) {
+    s.point *= k;
+    s.written.point *= k;
+    if (machine) tp.machine_axes.push_back(s.written.machine);
+  }
+  const bool inverse = tp.feed_mode == "inverse-time";
+  std::vector<std::pair<double, int>> feeds;
+  if (inverse) {
+    feeds = inverse_time(tp, arc);
+    for (double m : tp.block_minutes) tp.machining_time_min += m;
+  } else {
+    tp.machining_time_min = tp.path_length / tp.feed;
   }
   std::ostringstream os;
   bool multax = false;
@@ -336,9 +391,9 @@ Toolpath toolpath(const Motion& motion, const ToolpathOptions& o) {
       os << "t,x,y,z,i,j,k" << (o.arc_length ? ",s" : "") << "\n";
       for (std::size_t i = 0; i < tp.samples.size(); ++i) {
         const auto& p = tp.samples[i];
-        os << num(p.t, 12) << "," << num(p.point(0), 9) << "," << num(p.point(1), 9) << ","
-           << num(p.point(2), 9) << "," << num(p.axis(0), 12) << "," << num(p.axis(1), 12) << ","
-           << num(p.axis(2), 12);
+        os << num(p.t, 12);
+        for (int c = 0; c < 3; ++c) os << "," << num(p.written.point(c), point_digits);
+        for (int c = 0; c < 3; ++c) os << "," << num(p.written.axis(c), axis_digits);
         if (o.arc_length) os << "," << num(arc[i], 9);
         os << "\n";
       }
@@ -350,9 +405,10 @@ Toolpath toolpath(const Motion& motion, const ToolpathOptions& o) {
       if (multax) apt_line(os, "MULTAX/ON");
       apt_line(os, "FEDRAT/" + num(o.feed, 4));
       for (const auto& s : tp.samples) {
-        std::string g = "GOTO/" + num(s.point(0)) + "," + num(s.point(1)) + "," + num(s.point(2));
+        const cam::WrittenEnd& w = s.written;
+        std::string g = "GOTO/" + num(w.point(0)) + "," + num(w.point(1)) + "," + num(w.point(2));
         if (multax)
-          g += "," + num(s.axis(0), 9) + "," + num(s.axis(1), 9) + "," + num(s.axis(2), 9);
+          for (int c = 0; c < 3; ++c) g += "," + num(w.axis(c), axis_digits);
         apt_line(os, g);
       }
       apt_line(os, "FINI");
@@ -360,20 +416,34 @@ Toolpath toolpath(const Motion& motion, const ToolpathOptions& o) {
     }
     case CamFormat::gcode: {
       os << "(qmotion toolpath: " << tp.samples.size() << " points, chord tolerance "
-         << num(o.chord_tol, 6) << " " << tp.units
-         << (o.rotary.empty() ? ")\n" : ", table-tilting A/C, pivot at the workpiece origin)\n");
-      os << (tp.units == "in" ? "G20" : "G21") << " G90 G17 G94\n";
-      os << "F" << num(o.feed, 4) << "\n";
-      for (std::size_t i = 0; i < tp.samples.size(); ++i) {
-        Eigen::Vector3d p = tp.samples[i].point;
-        std::string extra;
-        if (!o.rotary.empty()) {
-          p = ac_matrix(tp.a_deg[i], tp.c_deg[i]) * p;
-          extra = " A" + num(tp.a_deg[i], 9) + " C" + num(tp.c_deg[i], 9);
-        }
-        os << (i == 0 ? "G0" : "G1") << " X" << num(p(0)) << " Y" << num(p(1)) << " Z" << num(p(2))
-           << extra << "\n";
+         << num(o.chord_tol, 6) << " " << tp.units;
+      if (machine) {
+        os << ", machine " << machine->name << ", axes " << machine->axes[0].name
+           << machine->axes[1].name << ", linear interpolation of the machine axes certified";
+        for (const auto& [w, v] : tp.axis_limits) os << ", " << w << " <= " << num(v, 4);
       }
+      os << ")\n";
+      os << (tp.units == "in" ? "G20" : "G21") << " G90 G17 " << (inverse ? "G93" : "G94") << "\n";
+      if (!inverse) os << "F" << num(o.feed, 4) << "\n";
+      for (std::size_t i = 0; i < tp.samples.size(); ++i) {
+        std::string words;
+        if (machine) {
+          const cam::MachineAxes& q = tp.machine_axes[i];
+          words = " X" + num(q[0]) + " Y" + num(q[1]) + " Z" + num(q[2]);
+          // The rotary words in alphabetical order, as controllers list them.
+          const int first = machine->axes[0].name < machine->axes[1].name ? 0 : 1;
+          for (int r : {first, 1 - first})
+            words += std::string(" ") + machine->axes[static_cast<std::size_t>(r)].name +
+                     num(q[static_cast<std::size_t>(3 + r)], axis_digits);
+        } else {
+          const Eigen::Vector3d& p = tp.samples[i].written.point;
+          words = " X" + num(p(0)) + " Y" + num(p(1)) + " Z" + num(p(2));
+        }
+        os << (i == 0 ? "G0" : "G1") << words;
+        if (inverse && i > 0) os << " F" << num(feeds[i - 1].first, feeds[i - 1].second);
+        os << "\n";
+      }
+      if (inverse) os << "G94\n";
       os << "M2\n";
       break;
     }

@@ -12,60 +12,13 @@
 #include <qmotion/io/poses.hpp>
 #include <sstream>
 
-#include "io_test_util.hpp"
+#include "api/toolpath_util.hpp"
 
 namespace qmotion::test {
 namespace {
 namespace fs = std::filesystem;
 using V3 = Eigen::Vector3d;
 constexpr double kPi = 3.14159265358979323846;
-
-fs::path scratch(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("qmotion_toolpath_" + std::to_string(::getpid()));
-  fs::create_directories(d);
-  return d / name;
-}
-
-qmotion::Motion rational(const std::string& poses, const std::string& form = "") {
-  qmotion::InterpolateOptions o;
-  o.form = form;
-  return qmotion::interpolate(io::read_poses(test_data(poses)), o).motion;
-}
-
-/// The exact image of x under either kind of motion.
-V3 place(const qmotion::Motion& m, double t, const V3& x) {
-  if (!m.is_rational()) return kernel::rotate(m.spline().rotation(t), x) + m.spline().position(t);
-  return kernel::apply_point(kernel::evaluate(m.rational(), t), x);
-}
-V3 direction(const qmotion::Motion& m, double t, const V3& a) {
-  return place(m, t, a) - place(m, t, V3::Zero());
-}
-
-std::pair<double, double> interval(const qmotion::Motion& m) {
-  if (!m.is_rational()) return {m.spline().a(), m.spline().b()};
-  return {m.rational().a(), m.rational().b()};
-}
-
-double segment_distance(const V3& x, const V3& a, const V3& b) {
-  const V3 ab = b - a;
-  const double s = std::clamp((x - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
-  return (x - (a + s * ab)).norm();
-}
-
-double angle(const V3& u, const V3& v) { return std::atan2(u.cross(v).norm(), u.dot(v)); }
-
-/// The angle from the unit vector x to the nearest normalised blend of the unit vectors u
-/// and v (the shorter great-circle arc between them), in closed form.
-double angle_to_arc(const V3& x, const V3& u, const V3& v) {
-  const V3 n = u.cross(v);
-  if (n.norm() < 1e-15) return angle(x, u);
-  const V3 nn = n.normalized();
-  const V3 p = x - x.dot(nn) * nn;  // x projected into the arc's plane
-  // Inside the arc when p lies between u and v (on the sides of u and v that face each other).
-  if (p.norm() > 0 && u.cross(p).dot(nn) >= 0 && p.cross(v).dot(nn) >= 0)
-    return std::atan2(std::abs(x.dot(nn)), p.norm());
-  return std::min(angle(x, u), angle(x, v));
-}
 
 /// Dense evaluation of every segment against the exact motion (65 points each): the
 /// largest chord distance and axis angle from the blends of the end axes (radians).
@@ -208,16 +161,18 @@ TEST(Toolpath, RotaryAcAnglesReproduceTheAxisAndStayContinuous) {
   o.chord_tol = 1e-2;
   o.rotary = "ac";
   const auto tp = qmotion::toolpath(m, o);
-  ASSERT_EQ(tp.a_deg.size(), tp.samples.size());
+  ASSERT_EQ(tp.machine_axes.size(), tp.samples.size());
   for (std::size_t i = 0; i < tp.samples.size(); ++i) {
-    const double A = tp.a_deg[i] * kPi / 180, C = tp.c_deg[i] * kPi / 180;
+    const double A = tp.machine_axes[i][3] * kPi / 180, C = tp.machine_axes[i][4] * kPi / 180;
     const Eigen::Matrix3d T =
         (Eigen::AngleAxisd(A, V3::UnitX()) * Eigen::AngleAxisd(C, V3::UnitZ())).toRotationMatrix();
     const V3 z = T * tp.samples[i].axis;
     EXPECT_LE(std::atan2(z.cross(V3::UnitZ()).norm(), z.dot(V3::UnitZ())), 1e-9) << "sample " << i;
     if (i > 0) {
-      EXPECT_LT(std::abs(tp.c_deg[i] - tp.c_deg[i - 1]), 90.0) << "C jumps at sample " << i;
-      EXPECT_LT(std::abs(tp.a_deg[i] - tp.a_deg[i - 1]), 90.0) << "A jumps at sample " << i;
+      EXPECT_LT(std::abs(tp.machine_axes[i][4] - tp.machine_axes[i - 1][4]), 90.0)
+          << "C jumps at sample " << i;
+      EXPECT_LT(std::abs(tp.machine_axes[i][3] - tp.machine_axes[i - 1][3]), 90.0)
+          << "A jumps at sample " << i;
     }
   }
 }
@@ -390,13 +345,7 @@ TEST(Toolpath, NurbsBlocksParseBackAsClampedCubicsWithinTheTolerance) {
 TEST(Toolpath, BadOptionsAreRefusedAndWriteNothing) {
   const qmotion::Motion m = rational("poses/five_positions.json");
   const std::string out = scratch("bad.ngc").string();
-  auto with = [&](auto change) {
-    qmotion::ToolpathOptions o;
-    o.output = out;
-    o.chord_tol = 1e-2;
-    change(o);
-    return [m, o] { qmotion::toolpath(m, o); };
-  };
+  auto with = [&](auto change) { return toolpath_with(m, out, change); };
   EXPECT_TRUE(throws_error(with([](qmotion::ToolpathOptions& o) { o.axis = V3::Zero(); }),
                            Errc::invalid_input, {"--axis"}));
   EXPECT_TRUE(throws_error(with([](qmotion::ToolpathOptions& o) { o.chord_tol = 0; }),
@@ -445,7 +394,7 @@ TEST(Toolpath, BadOptionsAreRefusedAndWriteNothing) {
   EXPECT_FALSE(fs::exists(out));
   o.c_hold = true;
   const auto tp = qmotion::toolpath(spin, o);
-  for (double a : tp.a_deg) EXPECT_EQ(a, 0.0);
+  for (const auto& q : tp.machine_axes) EXPECT_NEAR(q[3], 0.0, 1e-12);
   EXPECT_TRUE(fs::exists(out));
 }
 

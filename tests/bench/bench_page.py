@@ -37,6 +37,9 @@ PEERS = [
      "writing a motion file: qmotion vs an ofstream writing the same bytes"),
     ("BM_FitPoses", "BM_Peer_InterpolateAll",
      "a dense noisy pose stream: fit within the tolerances vs a B-spline through every pose"),
+    ("BM_MachineToolpath", "BM_WorkpieceToolpath",
+     "G-code on a table A/C machine, certified for its own interpolation, vs 3-axis G-code "
+     "certified on the workpiece alone (tilt_150)"),
     ("BM_WriteTrajectoryJson", "BM_OfstreamSameTrajectoryBytes",
      "writing a trajectory: qmotion vs an ofstream writing the same bytes"),
 ]

@@ -1,7 +1,8 @@
 // tests/bench/toolpath_bench.cpp: the guaranteed toolpath sampler (certified chords and
 // axes, cam::sample_toolpath) in points per second along the 40-pose helix's B-spline
 // motion, and the time to write a 10^4-point toolpath (APT, CSV, G-code) through
-// qmotion::toolpath (--max-step sets the count); NURBS G-code (--nurbs) against G1 moves.
+// qmotion::toolpath (--max-step sets the count); NURBS G-code (--nurbs) against G1 moves;
+// a table-tilting A/C machine's certified program against the workpiece certificate alone.
 #include <benchmark/benchmark.h>
 
 #include <filesystem>
@@ -82,6 +83,36 @@ void BM_Nurbs(benchmark::State& state) {
   std::filesystem::remove(o.output);
 }
 BENCHMARK(BM_Nurbs)->ArgsProduct({{1, 2, 3, 4}, {0, 1}})->Unit(benchmark::kMillisecond);
+
+/// tests/data/poses/tilt_150.json (150 mm off the pivot, the axis tilting 20-60 degrees):
+/// G-code for a table A/C machine, certified for its linear interpolation of the axes, and
+/// inverse-time feeds (BM_MachineToolpath), against the 3-axis program the workpiece
+/// certificate alone needs (BM_WorkpieceToolpath), at chord tolerances 1e-1 ... 1e-3 mm.
+void toolpath_on(benchmark::State& state, const std::string& rotary) {
+  static const qm::Motion m = [] {
+    qm::InterpolateOptions io;
+    io.form = "bspline";
+    return qm::interpolate(
+               qm::io::read_poses(std::string(QMOTION_TEST_DATA) + "/poses/tilt_150.json"), io)
+        .motion;
+  }();
+  qm::ToolpathOptions o;
+  o.output =
+      (std::filesystem::temp_directory_path() / ("qmotion_bench_m" + rotary + ".ngc")).string();
+  o.chord_tol = std::pow(10.0, -static_cast<double>(state.range(0)));
+  o.rotary = rotary;
+  if (!rotary.empty()) o.feed_mode = "inverse-time";
+  std::size_t points = 0;
+  for (auto _ : state) points = qm::toolpath(m, o).samples.size();
+  state.counters["points"] = static_cast<double>(points);
+  state.SetLabel((rotary.empty() ? std::string("3-axis") : "A/C, G93") + ", chord tol 1e-" +
+                 std::to_string(state.range(0)) + " mm");
+  std::filesystem::remove(o.output);
+}
+void BM_MachineToolpath(benchmark::State& state) { toolpath_on(state, "ac"); }
+void BM_WorkpieceToolpath(benchmark::State& state) { toolpath_on(state, ""); }
+BENCHMARK(BM_MachineToolpath)->DenseRange(1, 3)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_WorkpieceToolpath)->DenseRange(1, 3)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

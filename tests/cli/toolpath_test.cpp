@@ -16,7 +16,9 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <qmotion/api/toolpath.hpp>
 #include <qmotion/io/poses.hpp>
+#include <qmotion/io/qspline_file.hpp>
 #include <sstream>
 #include <vector>
 
@@ -68,6 +70,20 @@ std::vector<std::vector<double>> csv_rows(const std::string& path) {
   return rows;
 }
 
+/// The machine words of every G0/G1 block of a G-code file, in order.
+std::vector<std::map<char, double>> gcode_words(const std::string& path) {
+  std::ifstream f(path);
+  std::vector<std::map<char, double>> out;
+  for (std::string line; std::getline(f, line);) {
+    if (line.rfind("G0 ", 0) != 0 && line.rfind("G1 ", 0) != 0) continue;
+    std::map<char, double> w;
+    std::istringstream ws(line.substr(3));
+    for (std::string word; ws >> word;) w[word[0]] = std::stod(word.substr(1));
+    out.push_back(w);
+  }
+  return out;
+}
+
 TEST(Cli, ToolpathGcodeRunsInLinuxCncsInterpreter) {
   const std::string m = (scratch_dir() / "tp_motion.json").string();
   ASSERT_EQ(run({"interpolate", test_data("poses/helix_40.json"), "-o", m}).status, 0);
@@ -99,48 +115,55 @@ TEST(Cli, ToolpathGcodeRunsInLinuxCncsInterpreter) {
       EXPECT_NEAR(e["point"][c].get<double>(), rows[i][1 + c], 1e-8) << "row " << i;
     }
   }
+  // The library writes the same files and knows each point's t and exact place.
+  qmotion::ToolpathOptions o;
+  o.point = Eigen::Vector3d(1, 0, 2);
+  o.axis = Eigen::Vector3d(1, 0, 1);
+  o.chord_tol = 0.01;
+  o.output = (scratch_dir() / "tp_lib.ngc").string();
+  const qmotion::Toolpath tp3 = qmotion::toolpath(io::load_motion(m), o);
+  ASSERT_EQ(slurp(o.output), slurp(ngc));
+  o.rotary = "ac";
+  o.output = (scratch_dir() / "tp5_lib.ngc").string();
+  const qmotion::Toolpath tp5 = qmotion::toolpath(io::load_motion(m), o);
+  ASSERT_EQ(slurp(o.output), slurp(ngc5));
   std::string log;
   const auto moves = rs274_moves(ngc, log);
   if (!moves) GTEST_SKIP() << "rs274 not installed (linuxcnc-uspace)";
-  ASSERT_EQ(moves->size(), rows.size()) << log;
-  // The file's 6 decimals, then the interpreter's 4: within 5e-5 + 5e-7.
-  for (std::size_t i = 0; i < rows.size(); ++i)
+  const auto words = gcode_words(ngc);
+  ASSERT_EQ(moves->size(), words.size()) << log;
+  ASSERT_EQ(words.size(), tp3.samples.size());
+  // The interpreter's 4 decimals are the file's 6; the file's are the exact points rounded.
+  for (std::size_t i = 0; i < words.size(); ++i)
     for (int c = 0; c < 3; ++c) {
-      EXPECT_NEAR((*moves)[i][c], rows[i][1 + c], 5.1e-5) << "move " << i;
+      const char w = static_cast<char>('X' + c);
+      EXPECT_NEAR((*moves)[i][static_cast<std::size_t>(c)], words[i].at(w), 5.1e-5) << i;
+      EXPECT_NEAR(words[i].at(w), tp3.samples[i].point(c), 5.1e-7) << "move " << i;
     }
   // 5-axis: machine XYZ = Rx(A) Rz(C) p, and A, C take the axis onto +Z.
   const auto moves5 = rs274_moves(ngc5, log);
   ASSERT_TRUE(moves5);
-  ASSERT_EQ(moves5->size(), rows.size()) << log;
-  for (std::size_t i = 0; i < rows.size(); ++i) {
+  const auto words5 = gcode_words(ngc5);
+  ASSERT_EQ(moves5->size(), words5.size()) << log;
+  ASSERT_EQ(words5.size(), tp5.samples.size());
+  for (std::size_t i = 0; i < words5.size(); ++i) {
     const auto& mv = (*moves5)[i];
-    const double A = mv[3] * 3.14159265358979323846 / 180, C = mv[5] * 3.14159265358979323846 / 180;
+    EXPECT_NEAR(mv[3], words5[i].at('A'), 5.1e-5);
+    EXPECT_NEAR(mv[5], words5[i].at('C'), 5.1e-5);
+    // The file's own 9 decimals of A and C: T p and T k from them.
+    const double A = words5[i].at('A') * 3.14159265358979323846 / 180,
+                 C = words5[i].at('C') * 3.14159265358979323846 / 180;
     const Eigen::Matrix3d T = (Eigen::AngleAxisd(A, Eigen::Vector3d::UnitX()) *
                                Eigen::AngleAxisd(C, Eigen::Vector3d::UnitZ()))
                                   .toRotationMatrix();
-    const Eigen::Vector3d p = T * Eigen::Vector3d(rows[i][1], rows[i][2], rows[i][3]);
+    const Eigen::Vector3d p = T * tp5.samples[i].point;
     for (int c = 0; c < 3; ++c) {
-      EXPECT_NEAR(mv[c], p(c), 5.1e-5 + 1e-6 * p.norm()) << "move " << i;
+      EXPECT_NEAR(mv[static_cast<std::size_t>(c)], p(c), 5.1e-5 + 1e-6 * p.norm()) << "move " << i;
+      EXPECT_NEAR(words5[i].at(static_cast<char>('X' + c)), p(c), 5.1e-7 + 1e-9 * p.norm());
     }
-    const Eigen::Vector3d z = T * Eigen::Vector3d(rows[i][4], rows[i][5], rows[i][6]);
-    EXPECT_LE(z.cross(Eigen::Vector3d::UnitZ()).norm(), 2e-6) << "move " << i;  // 4 decimals
+    const Eigen::Vector3d z = T * tp5.samples[i].axis;
+    EXPECT_LE(std::atan2(z.cross(Eigen::Vector3d::UnitZ()).norm(), z(2)), 1e-9) << "move " << i;
   }
-  // The file's own 9 decimals of A and C reproduce the axis within 1e-9 rad.
-  std::ifstream f(ngc5);
-  std::size_t k = 0;
-  for (std::string line; std::getline(f, line);) {
-    const auto a = line.find(" A"), c = line.find(" C");
-    if (a == std::string::npos || c == std::string::npos) continue;
-    const double A = std::stod(line.substr(a + 2)) * 3.14159265358979323846 / 180;
-    const double C = std::stod(line.substr(c + 2)) * 3.14159265358979323846 / 180;
-    const Eigen::Matrix3d T = (Eigen::AngleAxisd(A, Eigen::Vector3d::UnitX()) *
-                               Eigen::AngleAxisd(C, Eigen::Vector3d::UnitZ()))
-                                  .toRotationMatrix();
-    const Eigen::Vector3d z = T * Eigen::Vector3d(rows[k][4], rows[k][5], rows[k][6]).normalized();
-    EXPECT_LE(std::atan2(z.cross(Eigen::Vector3d::UnitZ()).norm(), z(2)), 1e-9) << line;
-    ++k;
-  }
-  EXPECT_EQ(k, rows.size());
 }
 
 TEST(Cli, ToolpathBadInputsExitTwoAndLeaveNoFile) {
@@ -203,6 +226,129 @@ TEST(Cli, ToolpathNurbsReportsItsCertifiedDeviation) {
   std::size_t blocks = 0;
   for (std::string line; std::getline(f, line);) blocks += line.rfind("K", 0) == 0;
   EXPECT_EQ(blocks + 1, report["control_points"].get<std::size_t>() + 4);  // + the G06.2 block
+}
+
+TEST(Cli, ToolpathMachinesAndInverseTimeRunInLinuxCncsInterpreter) {
+  // 150 mm off the pivot, the axis tilting by tens of degrees: A/C and B/C tables, a
+  // head-table machine file, each with inverse-time feed and axis limits.
+  const std::string m = (scratch_dir() / "tilt_motion.json").string();
+  ASSERT_EQ(
+      run({"interpolate", test_data("poses/tilt_150.json"), "--form", "bspline", "-o", m}).status,
+      0);
+  const qmotion::Motion motion = io::load_motion(m);
+  const double tol = 0.01;
+  struct Case {
+    std::string name;
+    std::vector<std::string> args;
+  };
+  const std::vector<Case> cases{
+      {"ac", {"--rotary", "ac", "--feed-mode", "inverse-time", "--axis-limits", "A=4000,C=4000"}},
+      {"bc", {"--rotary", "bc", "--feed-mode", "inverse-time"}},
+      {"file", {"--machine", test_data("machines/head_table.json"), "--feed-mode", "inverse-time"}},
+      {"heads", {"--machine", test_data("machines/head_head.json")}}};
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.name);
+    const std::string ngc = (scratch_dir() / ("tilt_" + c.name + ".ngc")).string();
+    std::vector<std::string> args{"toolpath", m,        "--point", "0,0,0", "--chord-tol",
+                                  "0.01",     "--feed", "800",     "-o",    ngc};
+    args.insert(args.end(), c.args.begin(), c.args.end());
+    const Result r = run(args);
+    ASSERT_EQ(r.status, 0) << r.err;
+    const json report = json::parse(r.out);
+    EXPECT_LE(report["max_chord_deviation_bound"].get<double>(), tol);
+    EXPECT_FALSE(report["machine"]["name"].get<std::string>().empty());
+    const bool inverse = c.name != "heads";
+    EXPECT_EQ(report["feed_mode"].get<std::string>(),
+              inverse ? "inverse-time" : "units-per-minute");
+    // The library makes the same file; it knows each block's t.
+    qmotion::ToolpathOptions o;
+    o.output = (scratch_dir() / ("tilt_lib_" + c.name + ".ngc")).string();
+    o.chord_tol = tol;
+    o.feed = 800;
+    if (c.name == "ac" || c.name == "bc") o.rotary = c.name;
+    if (c.name == "file") o.machine_file = test_data("machines/head_table.json");
+    if (c.name == "heads") o.machine_file = test_data("machines/head_head.json");
+    if (inverse) o.feed_mode = "inverse-time";
+    if (c.name == "ac") o.axis_limits = {{'A', 4000.0}, {'C', 4000.0}};
+    const qmotion::Toolpath tp = qmotion::toolpath(motion, o);
+    ASSERT_EQ(slurp(o.output), slurp(ngc));
+    const auto words = gcode_words(ngc);
+    ASSERT_EQ(words.size(), tp.samples.size());
+    std::string log;
+    const auto moves = rs274_moves(ngc, log);
+    if (!moves) GTEST_SKIP() << "rs274 not installed (linuxcnc-uspace)";
+    ASSERT_EQ(moves->size(), words.size()) << log;
+    if (inverse) {
+      EXPECT_NE(log.find("inverse time"), std::string::npos) << log;
+    }
+    // rs274's moves (4 decimals) are the file's; interpolated linearly in the machine axes
+    // and mapped to the workpiece, the tip stays within T of the exact trajectory (plus what
+    // rs274's printing moves it: 5e-5 per word) and the axis within the angle tolerance.
+    std::vector<double> feeds;  // the feed rate rs274 sets before each STRAIGHT_FEED
+    {
+      std::istringstream in(log);
+      double last = 0;
+      for (std::string line; std::getline(in, line);) {
+        const auto p = line.find("SET_FEED_RATE(");
+        if (p != std::string::npos) last = std::stod(line.substr(p + 14));
+        if (line.find("STRAIGHT_FEED(") != std::string::npos) feeds.push_back(last);
+      }
+    }
+    ASSERT_EQ(feeds.size() + 1, moves->size());
+    const char r0 = tp.machine->axes[0].name, r1 = tp.machine->axes[1].name;
+    auto column = [](char w) { return w == 'A' ? 3 : w == 'B' ? 4 : 5; };
+    double tip = 0, ang = 0;
+    for (std::size_t i = 0; i < moves->size(); ++i) {
+      const auto& mv = (*moves)[i];
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_NEAR(mv[static_cast<std::size_t>(k)], words[i].at(static_cast<char>('X' + k)),
+                    5.1e-5);
+      }
+      EXPECT_NEAR(mv[static_cast<std::size_t>(column(r0))], words[i].at(r0), 5.1e-5);
+      EXPECT_NEAR(mv[static_cast<std::size_t>(column(r1))], words[i].at(r1), 5.1e-5);
+      if (i == 0) continue;
+      const auto& mp = (*moves)[i - 1];
+      const cam::MachineAxes q0{mp[0], mp[1], mp[2], mp[static_cast<std::size_t>(column(r0))],
+                                mp[static_cast<std::size_t>(column(r1))]};
+      const cam::MachineAxes q1{mv[0], mv[1], mv[2], mv[static_cast<std::size_t>(column(r0))],
+                                mv[static_cast<std::size_t>(column(r1))]};
+      const double t0 = tp.samples[i - 1].t, t1 = tp.samples[i].t;
+      std::vector<Eigen::Vector3d> arc;
+      for (int k = 0; k <= 128; ++k)
+        arc.push_back(motion.place(t0 + (t1 - t0) * k / 128, Eigen::Vector3d::Zero()));
+      for (int s = 0; s <= 32; ++s) {
+        cam::MachineAxes q;
+        for (std::size_t j = 0; j < 5; ++j) q[j] = q0[j] + (q1[j] - q0[j]) * s / 32;
+        const auto [p, k] = cam::forward_kinematics(*tp.machine, q);
+        double d = HUGE_VAL;
+        for (std::size_t e = 0; e + 1 < arc.size(); ++e) {
+          const Eigen::Vector3d ab = arc[e + 1] - arc[e];
+          const double u = std::clamp((p - arc[e]).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+          d = std::min(d, (p - arc[e] - u * ab).norm());
+        }
+        tip = std::max(tip, d);
+        const Eigen::Vector3d z = (motion.place(t0 + (t1 - t0) * s / 32, Eigen::Vector3d::UnitZ()) -
+                                   motion.place(t0 + (t1 - t0) * s / 32, Eigen::Vector3d::Zero()));
+        ang = std::max(ang, std::atan2(k.cross(z).norm(), k.dot(z)));
+      }
+      // Inverse time: rs274 turns F into the feed that takes the block 1/F minutes over
+      // the machine's XYZ move.
+      if (inverse) {
+        const double xyz = Eigen::Vector3d(words[i].at('X') - words[i - 1].at('X'),
+                                           words[i].at('Y') - words[i - 1].at('Y'),
+                                           words[i].at('Z') - words[i - 1].at('Z'))
+                               .norm();
+        EXPECT_NEAR(feeds.at(i - 1), xyz * words[i].at('F'), 5e-5 + 1e-7 * feeds.at(i - 1))
+            << "block " << i;
+      }
+    }
+    // What rs274 prints moves the tip by up to 5e-5 per XYZ word and 5e-5 degrees per angle.
+    const double printing = std::sqrt(3.0) * 5e-5 + 2 * 250 * 5e-5 * 3.14159265358979323846 / 180;
+    EXPECT_LE(tip, tol + printing);
+    EXPECT_LE(ang, 0.5 * 3.14159265358979323846 / 180 + 2e-6);
+    std::cout << "[ rs274    ] " << c.name << ": " << words.size() << " blocks, tip within "
+              << tip / tol << " T, axis within " << ang * 180 / 3.14159265358979323846 << " deg\n";
+  }
 }
 
 }  // namespace

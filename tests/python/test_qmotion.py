@@ -273,6 +273,23 @@ def test_toolpath_is_the_clis(tmp_path):
             assert nurbs[k] == pytest.approx(theirs[k], rel=1e-9), k
     assert len(open(tmp_path / "n.ngc").readlines()) == len(open(tmp_path / "n2.ngc").readlines())
     assert nurbs["degree"] <= 3 and nurbs["max_deviation_bound"] <= 0.001
+    # A machine file and inverse-time feed, as the CLI's options.
+    tilt = qmotion.interpolate(data("poses/tilt_150.json"), form="bspline")
+    tilt.save(str(tmp_path / "tilt.json"))
+    machine = data("machines/head_table.json")
+    ours = qmotion.toolpath(tilt, str(tmp_path / "t1.ngc"), point=[0, 0, 0], chord_tol=0.01,
+                            machine=machine, feed_mode="inverse-time", axis_limits={"C": 2000})
+    r = cli("toolpath", tmp_path / "tilt.json", "--point", "0,0,0", "--chord-tol", "0.01",
+            "--machine", machine, "--feed-mode", "inverse-time", "--axis-limits", "C=2000",
+            "-o", tmp_path / "t2.ngc")
+    assert r.returncode == 0, r.stderr
+    theirs = json.loads(r.stdout)
+    assert {k: v for k, v in ours.items() if k != "path"} == {k: v for k, v in theirs.items() if k != "path"}
+    assert open(tmp_path / "t1.ngc").read() == open(tmp_path / "t2.ngc").read()
+    assert ours["machine"]["name"] == "head B, table C" and ours["axis_limits"]["C"] == 2000
+    with pytest.raises(ValueError, match="axis_limits"):
+        qmotion.toolpath(tilt, str(tmp_path / "t3.ngc"), point=[0, 0, 0], chord_tol=0.01,
+                         feed_mode="inverse-time", axis_limits={"XY": 5})
     with pytest.raises(ValueError, match="--axis"):
         qmotion.toolpath(m, str(tmp_path / "z.csv"), point=[0, 0, 0], axis=[0, 0, 0], chord_tol=0.1)
 

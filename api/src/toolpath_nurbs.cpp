@@ -1,0 +1,82 @@
+// api/src/toolpath_nurbs.cpp: `toolpath --nurbs`, the trajectory as G06.2 NURBS blocks.
+#include <qmotion/cam/cam_nurbs.hpp>
+#include <qmotion/kernel/error.hpp>
+
+#include "toolpath_detail.hpp"
+
+namespace qmotion::toolpath_detail {
+
+/// `--nurbs`: the trajectory as a NURBS of degree <= 3 (cam::cam_nurbs) within the
+/// tolerance `tol` (the motion's unit) less the quaternion spline's fit, certified for the
+/// numbers as written; measured against the exact motion at 64 points per span; Fanuc
+/// G06.2 blocks into os.
+void nurbs_toolpath(Toolpath& tp, const cam::ToolTrajectories& src, double k, double tol,
+                    std::ostringstream& os) {
+  cam::CamNurbsOptions no;
+  no.tol = tol - src.fit_error;
+  no.written = [k](const Eigen::Vector4d& v) {
+    const double w = std::round(v(0) * kNurbsQuantum) / kNurbsQuantum;
+    Eigen::Vector3d x = v.tail<3>() / v(0) * k;
+    for (int i = 0; i < 3; ++i) x(i) = std::round(x(i) * kNurbsQuantum) / kNurbsQuantum;
+    Eigen::Vector4d r;
+    r << w, w * x / k;
+    return r;
+  };
+  const cam::CamNurbs cn = cam::cam_nurbs(src.h, src.exact_point, src.breaks, src.continuity, no);
+  NurbsToolpath nt;
+  nt.curve = kernel::map_coeffs(cn.curve, [k](const Eigen::Vector4d& v) {
+    Eigen::Vector4d r;
+    r << v(0), v.tail<3>() * k;
+    return r;
+  });
+  nt.t_knots = cn.t_knots;
+  nt.exact = cn.exact;
+  nt.spans = cn.spans;
+  nt.max_deviation_bound = (cn.bound + src.fit_error) * k;
+  for (const auto& v : nt.curve.ctrl())
+    if (!(v(0) >= 1e-4 && v(0) <= 99.9999))
+      throw Error(Errc::internal, "a NURBS weight outside 0.0001..99.9999: " + num(v(0)));
+  // Dense confirmation and the path length, span by span (span j of the curve stands for
+  // span j of t_knots).
+  std::vector<double> xt = cn.t_knots;
+  xt.erase(std::unique(xt.begin(), xt.end()), xt.end());
+  const std::vector<double> xc = nt.curve.breakpoints();
+  for (std::size_t j = 0; j + 1 < xt.size(); ++j) {
+    const auto piece = kernel::bezier_piece(nt.curve, xc[j], xc[j + 1]);
+    for (int s = 0; s <= 64; ++s) {
+      const Eigen::Vector4d c = kernel::evaluate(piece, xc[j] + (xc[j + 1] - xc[j]) * s / 64);
+      const Eigen::Vector3d e = src.exact_point(xt[j] + (xt[j + 1] - xt[j]) * s / 64) * k;
+      nt.max_deviation_measured =
+          std::max(nt.max_deviation_measured, (Eigen::Vector3d(c.tail<3>() / c(0)) - e).norm());
+    }
+    for (int s = 0; s < 4; ++s)
+      tp.path_length += k * arc_length(src, xt[j] + (xt[j + 1] - xt[j]) * s / 4,
+                                       xt[j] + (xt[j + 1] - xt[j]) * (s + 1) / 4);
+  }
+  // The blocks: the first control point is the current position (a rapid move there), the
+  // first block carries G06.2, the order P, the first knot and the feed; every control point
+  // its knot; the last `order` knots stand alone.
+  const auto& c = nt.curve;
+  const int order = c.degree() + 1, kd = exact_decimals(c.knots(), 9);
+  const std::size_t n = c.ctrl().size();
+  std::ostringstream head;
+  head.precision(3);
+  head << "(qmotion toolpath: NURBS of degree " << c.degree() << ", " << n << " control points, "
+       << nt.spans << (nt.spans == 1 ? " span, " : " spans, ")
+       << (nt.exact ? "the exact trajectory" : "a fit")
+       << ", certified deviation <= " << nt.max_deviation_bound << " " << tp.units << ")\n";
+  os << head.str() << (tp.units == "in" ? "G20" : "G21") << " G90 G17 G94\n";
+  auto xyz = [](const Eigen::Vector4d& v) {
+    return " X" + num(v(1) / v(0)) + " Y" + num(v(2) / v(0)) + " Z" + num(v(3) / v(0));
+  };
+  os << "G0" << xyz(c.ctrl().front()) << "\n";
+  for (std::size_t i = 0; i < n; ++i)
+    os << (i == 0 ? "G06.2 P" + std::to_string(order) + " " : "") << "K" << num(c.knots()[i], kd)
+       << xyz(c.ctrl()[i]) << " R" << num(c.ctrl()[i](0)) << (i == 0 ? " F" + num(tp.feed, 4) : "")
+       << "\n";
+  for (std::size_t i = n; i < c.knots().size(); ++i) os << "K" << num(c.knots()[i], kd) << "\n";
+  os << "M2\n";
+  tp.nurbs = std::move(nt);
+}
+
+}  // namespace qmotion::toolpath_detail
