@@ -264,18 +264,16 @@ Toolpath toolpath(const Motion& motion, const ToolpathOptions& o) {
   const double k = unit_factor(munits, tp.units);              // motion unit -> output unit
   const double tol = o.chord_tol / k;                          // in the motion's unit
   const auto [point_digits, axis_digits] = decimals(f);
-  // The written points move by up to sqrt(3)/2 of the last printed decimal.
-  const double quantum = std::pow(10.0, -point_digits);
-  if (o.nurbs && o.chord_tol < 10 / kNurbsQuantum) {
+  // A tolerance is certified down to ten units of the last printed decimal (--nurbs prints
+  // 6 decimals, as G-code does).
+  const double least = 10 * std::pow(10.0, -point_digits);
+  if (o.chord_tol < least) {
     std::ostringstream m;
-    m << "--chord-tol " << o.chord_tol << ": --nurbs writes 6 decimals, so it certifies "
-      << "tolerances from 1e-05 (in the output unit)";
-    throw Error(Errc::invalid_input, m.str());
-  }
-  if (o.chord_tol < 10 * quantum) {
-    std::ostringstream m;
-    m << "--chord-tol " << o.chord_tol << ": " << (f == CamFormat::csv ? "CSV" : "the file")
-      << " writes " << point_digits << " decimals, so it certifies tolerances from " << 10 * quantum
+    m << "--chord-tol " << o.chord_tol << ": "
+      << (o.nurbs               ? "--nurbs"
+          : f == CamFormat::csv ? "CSV"
+                                : "the file")
+      << " writes " << point_digits << " decimals, so it certifies tolerances from " << least
       << " (in the output unit)";
     throw Error(Errc::invalid_input, m.str());
   }
@@ -323,7 +321,8 @@ Toolpath toolpath(const Motion& motion, const ToolpathOptions& o) {
   };
   if (machine)
     so.between = [&](const cam::WrittenEnd& w0, const cam::WrittenEnd& w1) {
-      const auto [e, ea] = cam::interpolation_bound(*machine, w0.machine, w1.machine);
+      const auto [e, ea] =
+          cam::interpolation_bound(*machine, w0.machine, w1.machine, w0.axis, w1.axis);
       return std::pair<double, double>(e / k, ea);
     };
   const auto sampled = cam::sample_toolpath(src.h, src.d, so);

@@ -49,7 +49,7 @@ inline int exact_decimals(const std::vector<double>& v, int least) {
 }
 
 /// Decimals of the NURBS G-code's coordinates and weights.
-constexpr double kNurbsQuantum = 1e6;
+constexpr int kNurbsDigits = 6;
 
 /// `--nurbs`: Fanuc G06.2 blocks of the trajectory into os (toolpath_nurbs.cpp).
 void nurbs_toolpath(Toolpath& tp, const cam::ToolTrajectories& src, double k, double tol,

@@ -15,9 +15,9 @@ void nurbs_toolpath(Toolpath& tp, const cam::ToolTrajectories& src, double k, do
   cam::CamNurbsOptions no;
   no.tol = tol - src.fit_error;
   no.written = [k](const Eigen::Vector4d& v) {
-    const double w = std::round(v(0) * kNurbsQuantum) / kNurbsQuantum;
+    const double w = rounded(v(0), kNurbsDigits);
     Eigen::Vector3d x = v.tail<3>() / v(0) * k;
-    for (int i = 0; i < 3; ++i) x(i) = std::round(x(i) * kNurbsQuantum) / kNurbsQuantum;
+    for (int i = 0; i < 3; ++i) x(i) = rounded(x(i), kNurbsDigits);
     Eigen::Vector4d r;
     r << w, w * x / k;
     return r;

@@ -237,8 +237,11 @@ void machine_chain(const Machine& m, F&& head_step, G&& table_step) {
 /// g''(1/2) is computed exactly (Taylor2) and |g'''| bounded by composing the rotations'
 /// rates (Jet). The axis's blend has length at least cos(phi/2) (phi between the ends), so
 /// its direction is within asin(d / cos(phi/2)) of the axis when the deviation d is smaller.
+/// k0 and k1 are the tool axes at q0 and q1 (forward_kinematics), when the caller has them.
 inline std::pair<double, double> interpolation_bound(const Machine& m, const MachineAxes& q0,
-                                                     const MachineAxes& q1) {
+                                                     const MachineAxes& q1,
+                                                     const Eigen::Vector3d& k0,
+                                                     const Eigen::Vector3d& k1) {
   constexpr double kRad = 3.14159265358979323846 / 180;
   std::array<double, 2> w{}, mid{};  // signed rates and mid-block angles, radians
   for (std::size_t i = 0; i < 2; ++i) {
@@ -280,11 +283,15 @@ inline std::pair<double, double> interpolation_bound(const Machine& m, const Mac
   add_xyz();
   const double e = (tip2.d2.norm() + tip.m3 / 2) / 8;
   const double d = (axis2.d2.norm() + axis.m3 / 2) / 8;
-  const Eigen::Vector3d k0 = forward_kinematics(m, q0).second,
-                        k1 = forward_kinematics(m, q1).second;
   const double blend = std::cos(0.5 * std::atan2(k0.cross(k1).norm(), k0.dot(k1)));
   const double angle = d < blend ? std::asin(std::min(1.0, d / blend)) : 3.14159265358979323846 / 2;
   return {e, angle};
+}
+
+inline std::pair<double, double> interpolation_bound(const Machine& m, const MachineAxes& q0,
+                                                     const MachineAxes& q1) {
+  return interpolation_bound(m, q0, q1, forward_kinematics(m, q0).second,
+                             forward_kinematics(m, q1).second);
 }
 
 /// The built-in machines: "ac" (table A about X carrying C about Z) and "bc" (table B about Y
