@@ -126,7 +126,7 @@ json motion_info(const MotionFile& f, bool exact) {
                   {"worst_angle_deg", dev.worst_angle_deg},
                   {"worst_angle_pose", dev.worst_angle_pose}};
   }
-  out["poles"] = kernel::find_poles(m);
+  out["poles"] = kernel::find_poles(m, motion.label());
   if (f.method.is_object()) {
     // The record without its bulky members (copied member by member: the input poses and
     // factor control points of a 10^4-pose motion are 10^5 values not to copy).

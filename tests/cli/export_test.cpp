@@ -496,5 +496,47 @@ TEST(Cli, ShellsSolidsAndUnitsReadBackExactly) {
   EXPECT_LE(check(tin, five, {"--point", "1,2,3"})["relative_deviation"].get<double>(), 1e-11);
 }
 
+/// Runs the program with files limited to `blocks` of 512 bytes and SIGXFSZ ignored, so that
+/// a write past the limit fails with EFBIG part-way, as on a full disk.
+Result run_with_file_limit(const std::vector<std::string>& args, int blocks) {
+  const fs::path out = scratch_dir() / "limited_stdout", err = scratch_dir() / "limited_stderr";
+  std::string cmd = "sh -c 'trap \"\" XFSZ; ulimit -f " + std::to_string(blocks) +
+                    "; exec \"$0\" \"$@\"' " + quote(kExe);
+  for (const auto& a : args) cmd += " " + quote(a);
+  cmd += " >" + quote(out.string()) + " 2>" + quote(err.string()) + " </dev/null";
+  const int raw = std::system(cmd.c_str());
+  return Result{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
+}
+
+TEST(Cli, AWriteThatFailsPartWayLeavesNoFile) {
+  const fs::path dir = scratch_dir() / "write_failure";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string m = (dir / "m.json").string();
+  ASSERT_EQ(run({"interpolate", test_data("poses/helix_40.json"), "-o", m}).status, 0);
+  // Each output is far larger than 4 KB: STEP and IGES through OpenCASCADE's printer, JSON
+  // and G-code through qmotion's own writer.
+  const std::vector<std::vector<std::string>> jobs{
+      {"sweep", m, "--profile", "circle:3", "-o", (dir / "tube.step").string()},
+      {"sweep", m, "--profile", "circle:3", "-o", (dir / "tube.igs").string()},
+      {"sweep", m, "--profile", "circle:3", "-o", (dir / "tube.json").string()},
+      {"toolpath", m, "--point", "1,0,2", "--chord-tol", "0.01", "-o", (dir / "tp.ngc").string()}};
+  for (const auto& args : jobs) {
+    const std::string target = args.back();
+    SCOPED_TRACE(target);
+    const Result r = run_with_file_limit(args, 8);
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_NE(r.err.find(target), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(target));
+    // Nothing else either: no temporary file beside it.
+    for (const auto& e : fs::directory_iterator(dir))
+      EXPECT_EQ(e.path().filename(), "m.json") << "left behind: " << e.path();
+    // Without the limit the same job writes its file (the limit is what failed it).
+    ASSERT_EQ(run(args).status, 0);
+    EXPECT_GT(fs::file_size(target), 8u * 512u);
+    fs::remove(target);
+  }
+}
+
 }  // namespace
 }  // namespace qmotion::test

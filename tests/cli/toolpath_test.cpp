@@ -28,14 +28,24 @@ namespace qmotion::test {
 namespace {
 
 /// The STRAIGHT_TRAVERSE and STRAIGHT_FEED positions LinuxCNC's interpreter prints for a
-/// G-code file (x, y, z, a, b, c), or nothing when it is absent (the test then skips).
+/// G-code file (x, y, z, a, b, c). Nothing when the build turned real clients off
+/// (-DQMOTION_REAL_CLIENTS=OFF: the test skips, RS274_OR_SKIP), or, a failure, when rs274
+/// is missing (/usr/bin/rs274, or what QMOTION_RS274 names).
 std::optional<std::vector<std::array<double, 6>>> rs274_moves(const std::string& ngc,
                                                               std::string& log) {
-  if (!fs::exists("/usr/bin/rs274")) return std::nullopt;
+  if (!QMOTION_REAL_CLIENTS) return std::nullopt;
+  const char* env = std::getenv("QMOTION_RS274");
+  const std::string exe = env ? env : "/usr/bin/rs274";
+  if (!fs::exists(exe)) {
+    ADD_FAILURE() << exe
+                  << " not found: LinuxCNC's rs274 is required (install linuxcnc-uspace: "
+                     "scripts/install-deps.sh --test), or configure with "
+                     "-DQMOTION_REAL_CLIENTS=OFF";
+    return std::nullopt;
+  }
   const fs::path out = scratch_dir() / "rs274.out";
   const int raw = std::system(
-      ("/usr/bin/rs274 -g " + quote(ngc) + " >" + quote(out.string()) + " 2>&1 </dev/null")
-          .c_str());
+      (quote(exe) + " -g " + quote(ngc) + " >" + quote(out.string()) + " 2>&1 </dev/null").c_str());
   log = slurp(out);
   EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 0) << log;
   std::vector<std::array<double, 6>> moves;
@@ -54,6 +64,15 @@ std::optional<std::vector<std::array<double, 6>>> rs274_moves(const std::string&
   EXPECT_EQ(log.find("error"), std::string::npos) << log;
   return moves;
 }
+
+/// Skips the test when real clients are off, stops it when rs274 failed to run.
+#define RS274_OR_SKIP(moves)                                                                \
+  do {                                                                                      \
+    if (!(moves) && !QMOTION_REAL_CLIENTS)                                                  \
+      GTEST_SKIP() << "skipped: configured with -DQMOTION_REAL_CLIENTS=OFF, so LinuxCNC's " \
+                      "rs274 is not run";                                                   \
+    if (!(moves)) return;                                                                   \
+  } while (false)
 
 /// The rows of a toolpath CSV (t, x, y, z, i, j, k).
 std::vector<std::vector<double>> csv_rows(const std::string& path) {
@@ -129,7 +148,7 @@ TEST(Cli, ToolpathGcodeRunsInLinuxCncsInterpreter) {
   ASSERT_EQ(slurp(o.output), slurp(ngc5));
   std::string log;
   const auto moves = rs274_moves(ngc, log);
-  if (!moves) GTEST_SKIP() << "rs274 not installed (linuxcnc-uspace)";
+  RS274_OR_SKIP(moves);
   const auto words = gcode_words(ngc);
   ASSERT_EQ(moves->size(), words.size()) << log;
   ASSERT_EQ(words.size(), tp3.samples.size());
@@ -142,7 +161,7 @@ TEST(Cli, ToolpathGcodeRunsInLinuxCncsInterpreter) {
     }
   // 5-axis: machine XYZ = Rx(A) Rz(C) p, and A, C take the axis onto +Z.
   const auto moves5 = rs274_moves(ngc5, log);
-  ASSERT_TRUE(moves5);
+  RS274_OR_SKIP(moves5);
   const auto words5 = gcode_words(ngc5);
   ASSERT_EQ(moves5->size(), words5.size()) << log;
   ASSERT_EQ(words5.size(), tp5.samples.size());
@@ -276,7 +295,7 @@ TEST(Cli, ToolpathMachinesAndInverseTimeRunInLinuxCncsInterpreter) {
     ASSERT_EQ(words.size(), tp.samples.size());
     std::string log;
     const auto moves = rs274_moves(ngc, log);
-    if (!moves) GTEST_SKIP() << "rs274 not installed (linuxcnc-uspace)";
+    RS274_OR_SKIP(moves);
     ASSERT_EQ(moves->size(), words.size()) << log;
     if (inverse) {
       EXPECT_NE(log.find("inverse time"), std::string::npos) << log;

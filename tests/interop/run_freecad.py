@@ -15,7 +15,8 @@ Usage: run_freecad.py QMOTION DATA WORK_DIR   (DATA: the repository's tests/data
    it). The --solid tube is closed, thickens with makeThickness, cuts a box, and its
    volume matches qmotion's independent value: OpenCASCADE's adaptive BRepGProp (through
    `qmotion check`) within 1e-6, FreeCAD's fixed-order Volume within 1e-4.
-Exit 0 pass, 1 fail, 77 skip (no freecadcmd).
+Exit 0 pass, 1 fail (a missing freecadcmd fails: QMOTION_FREECADCMD names another), 77
+skip (QMOTION_REAL_CLIENTS=OFF in the environment).
 """
 import json
 import os
@@ -26,10 +27,14 @@ import sys
 
 def main():
     qmotion, data, work = sys.argv[1:4]
-    freecad = shutil.which("freecadcmd")
-    if not freecad:
-        print("freecadcmd not found: install freecad-python3 (scripts/install-deps.sh --test)")
+    if os.environ.get("QMOTION_REAL_CLIENTS") == "OFF":
+        print("skipped: configured with -DQMOTION_REAL_CLIENTS=OFF, so FreeCAD is not run")
         return 77
+    freecad = os.environ.get("QMOTION_FREECADCMD") or shutil.which("freecadcmd")
+    if not freecad or not os.path.exists(freecad):
+        print("freecadcmd not found: FreeCAD is required (install freecad-python3: "
+              "scripts/install-deps.sh --test), or configure with -DQMOTION_REAL_CLIENTS=OFF")
+        return 1
     os.makedirs(work, exist_ok=True)
     motion = os.path.join(work, "motion.json")
     subprocess.run([qmotion, "interpolate", os.path.join(data, "poses/five_positions.json"), "-o", motion], check=True)

@@ -42,7 +42,7 @@ inline ToolTrajectories tool_trajectories(const qmotion::Motion& motion,
   const Eigen::Vector4d direction(0, axis(0), axis(1), axis(2));
   if (motion.is_rational()) {
     const kernel::Motion<double>& m = motion.rational();
-    const auto poles = kernel::find_poles(m.curve);
+    const auto poles = kernel::find_poles(m.curve, m.label());
     if (!poles.empty())
       throw Error(Errc::numerical_failure,
                   m.label() + ": the motion has a pole at t = " + std::to_string(poles.front()) +

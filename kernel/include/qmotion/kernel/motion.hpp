@@ -4,6 +4,8 @@
 #include <cmath>
 #include <qmotion/kernel/bspline.hpp>
 #include <qmotion/kernel/dual_quaternion.hpp>
+#include <qmotion/kernel/error.hpp>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -132,9 +134,13 @@ Scalar plucker_residual(const QMotion<Scalar>& m) {
 /// run to infinity there). Q0 vanishes exactly where the weight |Q0|^2 >= 0 does; the
 /// weight's Bernstein pieces are subdivided where their convex hull reaches below
 /// rel_tol times the weight's scale, pruning every piece whose coefficients stay above.
+/// Errc::numerical_failure, naming `label` (the motion) and where, when 200 000 subdivisions
+/// do not isolate the zeros (the weight stays near zero over a stretch, as on a span whose
+/// rotational control points vanish).
 /// @return parameters of the poles found, ascending
 template <typename Scalar>
-std::vector<double> find_poles(const QMotion<Scalar>& m, double rel_tol = 1e-16) {
+std::vector<double> find_poles(const QMotion<Scalar>& m, const std::string& label = "motion",
+                               double rel_tol = 1e-16) {
   // The weight's Bezier pieces, each the product of the motion's piece with itself: O(n)
   // without assembling the degree-2n spline and taking it apart again.
   std::vector<Bernstein<double>> stack;
@@ -160,8 +166,11 @@ std::vector<double> find_poles(const QMotion<Scalar>& m, double rel_tol = 1e-16)
   while (!stack.empty()) {
     if (budget-- == 0)
       throw Error(Errc::numerical_failure,
-                  "the zeros of the rotational part could not be isolated within 200000 "
-                  "subdivisions (the weight |Q0|^2 stays near zero over a long stretch)");
+                  label +
+                      ": the zeros of the rotational part could not be isolated within 200000 "
+                      "subdivisions: the weight |Q0|^2 stays near zero over a stretch from t = " +
+                      std::to_string(stack.back().a()) +
+                      " (a span whose rotational part vanishes?)");
     Bernstein<double> p = std::move(stack.back());
     stack.pop_back();
     double lo = p[0];

@@ -286,7 +286,7 @@ kernel::BSpline<Vec4<Scalar>> point_trajectory(const Motion<Scalar>& m,
 /// Refuses (Errc::numerical_failure) a motion whose rotational part vanishes on its interval:
 /// its trajectories run to infinity at such a pole.
 inline void refuse_poles(const Motion<double>& m) {
-  const auto poles = kernel::find_poles(m.curve);
+  const auto poles = kernel::find_poles(m.curve, m.label());
   if (poles.empty()) return;
   std::ostringstream os;
   os.precision(12);
