@@ -211,10 +211,10 @@ std::string InterpolatedMotion::text() const {
 }
 
 void InterpolatedMotion::save(const std::string& path) const {
-  if (!exact_document.is_null())
-    write_file_atomic(path, text());
-  else
-    write_motion_json(path, motion.rational(), &input);
+  const auto& m = motion.rational();
+  if (exact_document.is_null()) return write_motion_json(path, m, &input);
+  check_motion_limits(m.degree(), m.curve.curve.ctrl().size(), path);
+  write_file_atomic(path, text());
 }
 
 }  // namespace qmotion

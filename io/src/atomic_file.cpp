@@ -20,7 +20,14 @@ std::string lower_extension(const std::string& path) {
   return e;
 }
 
-AtomicOutput::AtomicOutput(std::string path) : path_(std::move(path)) {
+void refuse_file_size(const std::string& path, std::uintmax_t max_bytes) {
+  throw Error(Errc::invalid_input,
+              path + ": more than " + std::to_string(max_bytes) +
+                  " bytes (the limit of a file qmotion reads or writes, which bounds memory)");
+}
+
+AtomicOutput::AtomicOutput(std::string path, std::uintmax_t max_bytes)
+    : path_(std::move(path)), max_bytes_(max_bytes) {
   if (path_.empty()) throw Error(Errc::invalid_input, "empty output path");
   if (std::filesystem::is_directory(path_))
     throw Error(Errc::invalid_input, path_ + ": is a directory, expected a file name");
@@ -33,6 +40,11 @@ AtomicOutput::~AtomicOutput() {
 }
 
 void AtomicOutput::commit() {
+  std::error_code ec;
+  if (const auto size = std::filesystem::file_size(temp_, ec); !ec && size > max_bytes_) {
+    std::remove(temp_.c_str());
+    refuse_file_size(path_, max_bytes_);
+  }
   if (std::rename(temp_.c_str(), path_.c_str()) != 0) {
     const std::string why = std::strerror(errno);
     std::remove(temp_.c_str());
@@ -41,7 +53,8 @@ void AtomicOutput::commit() {
   committed_ = true;
 }
 
-AtomicWriter::AtomicWriter(std::string path) : out_(std::move(path)) {
+AtomicWriter::AtomicWriter(std::string path, std::uintmax_t max_bytes)
+    : out_(std::move(path), max_bytes), max_bytes_(max_bytes) {
   fd_ = ::open(out_.temp_path().c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
   if (fd_ < 0)
     throw Error(Errc::invalid_input,
@@ -53,6 +66,9 @@ AtomicWriter::~AtomicWriter() {
 }
 
 void AtomicWriter::append(const char* data, std::size_t size) {
+  // Refused before the bytes go out: a file reading would refuse is never finished.
+  if (size > max_bytes_ - written_) refuse_file_size(out_.path(), max_bytes_);
+  written_ += size;
   while (size > 0) {
     const ssize_t n = ::write(fd_, data, size);
     if (n < 0 && errno == EINTR) continue;
@@ -72,8 +88,10 @@ void AtomicWriter::commit() {
   out_.commit();
 }
 
-void write_file_atomic(const std::string& path, const std::string& content) {
-  AtomicWriter file(path);
+void write_file_atomic(const std::string& path, const std::string& content,
+                       std::uintmax_t max_bytes) {
+  if (content.size() > max_bytes) refuse_file_size(path, max_bytes);
+  AtomicWriter file(path, max_bytes);
   file.append(content);
   file.commit();
 }

@@ -198,9 +198,7 @@ std::string read_text_file(const std::string& path, std::uintmax_t max_bytes) {
   if (!in) throw Error(Errc::invalid_input, path + ": cannot open file for reading");
   std::error_code ec;
   const auto size = std::filesystem::file_size(path, ec);
-  if (!ec && size > max_bytes)
-    throw Error(Errc::invalid_input, path + ": a file of " + std::to_string(size) +
-                                         " bytes (at most " + std::to_string(max_bytes) + ")");
+  if (!ec && size > max_bytes) refuse_file_size(path, max_bytes);
   // Read in chunks up to the limit: a device or pipe (/dev/zero, a FIFO) has no size.
   // The spare capacity lets the JSON reader parse the text in place (simdjson reads up to
   // 64 bytes past the end).
@@ -209,9 +207,7 @@ std::string read_text_file(const std::string& path, std::uintmax_t max_bytes) {
   char chunk[1 << 16];
   while (in.read(chunk, sizeof chunk) || in.gcount() > 0) {
     text.append(chunk, static_cast<std::size_t>(in.gcount()));
-    if (text.size() > max_bytes)
-      throw Error(Errc::invalid_input,
-                  path + ": more than " + std::to_string(max_bytes) + " bytes (the limit)");
+    if (text.size() > max_bytes) refuse_file_size(path, max_bytes);
   }
   if (in.bad()) throw Error(Errc::invalid_input, path + ": read error");
   return text;

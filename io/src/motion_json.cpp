@@ -420,6 +420,7 @@ std::string motion_json_text(const kernel::Motion<double>& m, const PoseSet* inp
 
 void write_motion_json(const std::string& path, const kernel::Motion<double>& m,
                        const PoseSet* input_poses) {
+  check_motion_limits(m.degree(), m.curve.curve.ctrl().size(), path);
   write_json_atomic(path, [&](JsonText& t) { motion_text(t, m, input_poses); });
 }
 

@@ -267,9 +267,10 @@ MotionFile parse_motion_fields(const json& doc, const std::string& source) {
                 source + ": basis: expected \"bezier\" or \"bspline\", found " + basis.dump());
   }
   const json& degree = require(doc, "degree", source);
-  if (!degree.is_number_integer() || degree.get<long long>() < 0 || degree.get<long long>() > 200)
+  if (!degree.is_number_integer())
     throw Error(Errc::invalid_input,
                 source + ": degree: expected an integer from 0 to 200, found " + degree.dump());
+  check_motion_limits(degree.get<long long>(), 0, source);
   f.degree = degree.get<int>();
   const auto range = read_numbers(require(doc, "param_range", source), source + ": param_range");
   if (range.size() != 2)
@@ -285,10 +286,7 @@ MotionFile parse_motion_fields(const json& doc, const std::string& source) {
   const json& ctrl = require(doc, "control_points", source);
   if (!ctrl.is_array())
     throw Error(Errc::invalid_input, source + ": control_points: expected an array");
-  if (ctrl.size() > kMaxMotionControlPoints)
-    throw Error(Errc::invalid_input, source + ": control_points: more than " +
-                                         std::to_string(kMaxMotionControlPoints) +
-                                         " (the limit keeps memory bounded)");
+  check_motion_limits(f.degree, ctrl.size(), source);
   f.ctrl.resize(ctrl.size());
   for (std::size_t i = 0; i < ctrl.size(); ++i) {
     // Messages are built only when a row is refused: this loop reads every number.
@@ -317,6 +315,17 @@ MotionFile parse_motion_fields(const json& doc, const std::string& source) {
 }
 
 }  // namespace
+
+void check_motion_limits(long long degree, std::size_t control_points, const std::string& source) {
+  if (degree < 0 || degree > kMaxMotionDegree)
+    throw Error(Errc::invalid_input, source + ": degree: expected an integer from 0 to " +
+                                         std::to_string(kMaxMotionDegree) + ", found " +
+                                         std::to_string(degree));
+  if (control_points > kMaxMotionControlPoints)
+    throw Error(Errc::invalid_input, source + ": control_points: more than " +
+                                         std::to_string(kMaxMotionControlPoints) +
+                                         " (the limit keeps memory bounded)");
+}
 
 MotionFile parse_motion(const json& doc, const std::string& source) {
   MotionFile f = parse_motion_fields(doc, source);

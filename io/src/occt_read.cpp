@@ -463,9 +463,7 @@ CadGeometry read_cad_isolated(const std::string& path, bool want_surface, const 
                               bool prechecks) {
   if (!std::filesystem::is_regular_file(path))
     throw Error(Errc::invalid_input, path + ": cannot open file for reading");
-  if (const auto size = std::filesystem::file_size(path); size > kMaxFileBytes)
-    throw Error(Errc::invalid_input, path + ": a file of " + std::to_string(size) +
-                                         " bytes (at most " + std::to_string(kMaxFileBytes) + ")");
+  if (std::filesystem::file_size(path) > kMaxFileBytes) refuse_file_size(path, kMaxFileBytes);
   const std::string ext = lower_extension(path);
   const bool step = ext == ".step" || ext == ".stp";
   if (!step && ext != ".igs" && ext != ".iges")

@@ -479,5 +479,45 @@ TEST(MotionJson, TheFastReaderValidatesWhatItDoesNotKeep) {
   }
 }
 
+// qmotion never writes a motion file it would refuse to read: a degree above the limit is
+// refused on the way out with the reader's message, and no file is left.
+TEST(MotionJson, AMotionAboveTheReadersLimitsIsNotWritten) {
+  const int n = io::kMaxMotionDegree + 1;
+  std::vector<double> knots(static_cast<std::size_t>(n + 1), 0.0);
+  knots.insert(knots.end(), static_cast<std::size_t>(n + 1), 1.0);
+  using DQ = kernel::DualQuaternion<double>;
+  std::vector<DQ> ctrl(static_cast<std::size_t>(n + 1), DQ::translation(Eigen::Vector3d(1, 2, 3)));
+  const kernel::Motion<double> m(kernel::QMotion<double>{
+      kernel::Basis::bezier, kernel::BSpline<DQ>::make(n, std::move(knots), std::move(ctrl))});
+  const auto dir = std::filesystem::temp_directory_path() / "qmotion_motion_limit";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / "m.json").string();
+  std::string written;
+  try {
+    io::write_motion_json(path, m);
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), Errc::invalid_input);
+    written = e.what();
+  }
+  EXPECT_TRUE(std::filesystem::is_empty(dir));
+  // The same text, with the degree edited, is what the reader refuses.
+  std::string text = io::motion_json_text(kernel::Motion<double>(kernel::QMotion<double>{
+      kernel::Basis::bezier, kernel::BSpline<DQ>::from_bezier(kernel::Bernstein<DQ>(
+                                 std::vector<DQ>(3, DQ::translation(Eigen::Vector3d(1, 2, 3)))))}));
+  const std::string degree2 = "\"degree\": 2";
+  const auto at = text.find(degree2);
+  ASSERT_NE(at, std::string::npos) << text;
+  text.replace(at, degree2.size(), "\"degree\": " + std::to_string(n));
+  std::string read;
+  try {
+    io::parse_motion_text(text, path);
+  } catch (const Error& e) {
+    read = e.what();
+  }
+  EXPECT_NE(written, "");
+  EXPECT_EQ(written, read);
+}
+
 }  // namespace
 }  // namespace qmotion::test

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <ostream>
+#include <qmotion/io/atomic_file.hpp>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -118,14 +119,11 @@ nlohmann::json read_json_file(const std::string& path);
 /// nested brackets alone would otherwise exhaust.
 inline constexpr std::size_t kMaxJsonDepth = 100;
 
-/// Largest file read (bounded memory: a 10^5-pose motion file is about 130 MB).
-inline constexpr std::uintmax_t kMaxFileBytes = std::uintmax_t(512) << 20;
-
 /// Spare capacity read_text_file leaves after the text, so that JSON is parsed in place.
 inline constexpr std::size_t kReadPadding = 64;
 
 /// The whole file; Errc::invalid_input naming the path when it cannot be read or is larger
-/// than max_bytes.
+/// than max_bytes (refuse_file_size: the message a writer gives for the same file).
 std::string read_text_file(const std::string& path, std::uintmax_t max_bytes = kMaxFileBytes);
 
 /// Parses a number written as integer, decimal (with optional exponent) or "p/q".

@@ -19,6 +19,13 @@ namespace qmotion::io {
 /// Most control points a motion file may hold: a B-spline motion through the most poses
 /// a pose file may hold (10^5) has about 7 x 10^5.
 inline constexpr std::size_t kMaxMotionControlPoints = 1000000;
+/// Highest degree a motion file may have.
+inline constexpr int kMaxMotionDegree = 200;
+
+/// Throws Errc::invalid_input naming `source` when a motion of this degree and number of
+/// control points exceeds what a motion file may hold: the reader's check and message, which
+/// the writer applies too, so that qmotion never writes a motion it would refuse to read.
+void check_motion_limits(long long degree, std::size_t control_points, const std::string& source);
 
 /// A validated motion file (docs/formats.md), numbers with their source text so that exact mode
 /// reads them exactly.
