@@ -29,13 +29,15 @@ inline void add_geometry_options(CLI::App* sub, qmotion::ExportOptions& o) {
                   "um, in, ft (default: the motion's)");
 }
 
-/// ", approximated: measured deviation D within tolerance T" when the export approximated,
-/// else "".
+/// ", approximated: [deviation at most B (proven), ]measured deviation D within tolerance T"
+/// when the export approximated, else "".
 inline std::string approximation_note(const qmotion::ExportResult& r) {
   if (!r.approx_deviation) return std::string();
   std::ostringstream os;
   os.precision(3);
-  os << ", approximated: measured deviation " << *r.approx_deviation;
+  os << ", approximated: ";
+  if (r.approx_bound) os << "deviation at most " << *r.approx_bound << " (proven), ";
+  os << "measured deviation " << *r.approx_deviation;
   if (r.approx_tolerance) os << " within tolerance " << *r.approx_tolerance;
   return os.str();
 }

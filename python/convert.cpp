@@ -86,6 +86,7 @@ json result_json(const ExportResult& r) {
          {"continuity_u", r.continuity_u},
          {"continuity_v", r.continuity_v}};
   if (r.approx_deviation) j["approximation_deviation"] = *r.approx_deviation;
+  if (r.approx_bound) j["approximation_bound"] = *r.approx_bound;
   if (r.approx_tolerance) j["approximation_tolerance"] = *r.approx_tolerance;
   if (r.volume) j["volume"] = *r.volume;
   if (r.mesh)

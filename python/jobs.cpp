@@ -89,7 +89,8 @@ void bind_jobs(py::module_& m) {
       "STEP/IGES shells split at C0 knots (single_face: one face per edge), solid=True for a "
       "closed planar profile. Returns a dict: degrees, continuity, faces, poles, units, volume, "
       "for a mesh its triangles and measured max_deviation, for a fit its "
-      "approximation_deviation and approximation_tolerance.");
+      "approximation_bound (proven), approximation_deviation (measured) and "
+      "approximation_tolerance.");
 
   m.def(
       "demo", [](const std::string& dir) { return to_python(write_demo(dir)); },

@@ -47,7 +47,9 @@ json fit_json(const QSplineFit& q, const ExportResult& r) {
       {"method", "least-squares fit of the rigid maps on one knot vector (docs/geometry.md)"},
       {"tolerance", q.tol * r.unit_factor},
       {"measured_deviation", q.fit.max_deviation * r.unit_factor},
-      {"max_deviation", q.fit.max_deviation * r.unit_factor},
+      {"max_deviation", q.fit.max_deviation_bound * r.unit_factor},
+      {"max_deviation_proof",
+       "the largest sampled deviation plus M h^2/8, M bounding its second derivative"},
       {"degree", q.fit.matrix.degree()},
       {"poles_per_curve", q.fit.matrix.ctrl().size()},
       {"spans", q.fit.spans},
@@ -57,6 +59,7 @@ json fit_json(const QSplineFit& q, const ExportResult& r) {
 
 void record_fit(const QSplineFit& q, ExportResult& r) {
   r.approx_deviation = q.fit.max_deviation * r.unit_factor;
+  r.approx_bound = q.fit.max_deviation_bound * r.unit_factor;
   r.approx_tolerance = q.tol * r.unit_factor;
   r.approx_spans = q.fit.spans;
 }

@@ -81,9 +81,12 @@ TEST(ExportQSpline, StepSweepsAreWithinTheToleranceOfTheMotionItself) {
       EXPECT_TRUE(c["faces_cover_profile"].get<bool>());
       EXPECT_TRUE(c["param_range_matches_motion"].get<bool>());
       EXPECT_LE(c["max_deviation"].get<double>(), o.tol) << c.dump();
+      ASSERT_TRUE(r.approx_bound);
+      EXPECT_LE(c["max_deviation"].get<double>(), *r.approx_bound * (1 + 1e-9)) << c.dump();
       std::cout << "[ poles    ] " << scheme << " tol " << rel << " x diagonal: " << r.poles
-                << " poles, " << r.approx_spans << " spans, measured " << *r.approx_deviation
-                << ", check " << c["max_deviation"].get<double>() << "\n";
+                << " poles, " << r.approx_spans << " spans, bound " << *r.approx_bound
+                << ", measured " << *r.approx_deviation << ", check "
+                << c["max_deviation"].get<double>() << "\n";
     }
   }
 }
@@ -113,8 +116,13 @@ TEST(ExportQSpline, JsonTrajectoryIsTheFittedCurveWithinTheDefaultTolerance) {
     dev = std::max(dev, (sweep::evaluate(curve, t) - place(m, t, x)).norm());
   }
   EXPECT_LE(dev, tol);
-  // The fit's check grid (64 per span) sees the worst to about 1% (sweep::kFitMargin).
-  EXPECT_LE(dev, *r.approx_deviation * 1.02);
+  // The proven bound covers what these samples find, and is in the file.
+  ASSERT_TRUE(r.approx_bound);
+  EXPECT_LE(dev, *r.approx_bound);
+  EXPECT_LE(*r.approx_bound, tol);
+  EXPECT_LE(*r.approx_deviation, *r.approx_bound);
+  EXPECT_EQ(doc["approximation"]["max_deviation"].get<double>(), *r.approx_bound);
+  EXPECT_EQ(doc["approximation"]["measured_deviation"].get<double>(), *r.approx_deviation);
   for (double t : {m.spline().a(), m.spline().b()})
     EXPECT_LE((sweep::evaluate(curve, t) - place(m, t, x)).norm(), 1e-12 * diagonal(m, {x}));
   for (double w : curve.weights) EXPECT_EQ(w, 1.0);  // polynomial, not rational

@@ -84,9 +84,7 @@ void BM_Fit(benchmark::State& state) {
   qmotion::sweep::FrameFitOptions o;
   o.tol = std::pow(10.0, -static_cast<double>(state.range(1))) * 10;  // the size is about 10
   qmotion::sweep::FrameFit f;
-  for (auto _ : state)
-    f = qmotion::sweep::fit_frames([&](double t) { return s.frame(t); }, s.knots,
-                                   s.interior_continuity(), corners, o);
+  for (auto _ : state) f = qmotion::sweep::fit_frames(s, corners, o);
   state.counters["poles"] = static_cast<double>(f.matrix.ctrl().size());
   state.counters["spans"] = f.spans;
   state.SetLabel(std::string(kNames[state.range(0)]) + " tol 1e-" + std::to_string(state.range(1)));

@@ -48,6 +48,8 @@ struct ExportResult {
   int degree_u = 0, degree_v = 0;
   int inserted_knots = 0;                  ///< for positive weights
   std::optional<double> approx_deviation;  ///< set when approximated (--max-degree, qspline)
+  /// Quaternion splines: the proven bound of the fit's deviation (docs/geometry.md).
+  std::optional<double> approx_bound;
   std::optional<double> approx_tolerance;  ///< the tolerance it was held to
   int approx_spans = 0;                    ///< quaternion splines: knot spans of the fit
   double min_weight = 0;

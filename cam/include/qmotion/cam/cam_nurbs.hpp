@@ -158,7 +158,8 @@ inline CamNurbs cam_nurbs(const kernel::BSpline<Eigen::Vector4d>& h,
     }
   }
   // A polynomial fit: the translation part of frames [I | p(t)] (sweep::fit_frames keeps the
-  // identity exactly), fitted at a tolerance the certificate then confirms, or tightened.
+  // identity exactly), fitted at a tolerance the certificate then confirms, or tightened (so
+  // the fit is given no bound of its own).
   sweep::FrameFitOptions fo;
   fo.degree = opt.max_degree;
   fo.max_spans = opt.max_spans;
@@ -181,7 +182,7 @@ inline CamNurbs cam_nurbs(const kernel::BSpline<Eigen::Vector4d>& h,
           m.block<3, 1>(1, 0) = point(t);
           return m;
         },
-        fit_breaks, fit_continuity, {Eigen::Vector3d::Zero()}, fo);
+        sweep::FrameBoundFn(), fit_breaks, fit_continuity, {Eigen::Vector3d::Zero()}, fo);
     std::vector<Eigen::Vector4d> poles;
     for (const auto& m : fit.matrix.ctrl()) poles.push_back(m.col(0));
     double b = HUGE_VAL;
