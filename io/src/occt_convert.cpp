@@ -82,6 +82,17 @@
 #include <sstream>
 #include <string_view>
 
+#if defined(__SANITIZE_ADDRESS__)
+#define QMOTION_LEAK_CHECKED 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define QMOTION_LEAK_CHECKED 1
+#endif
+#endif
+#ifdef QMOTION_LEAK_CHECKED
+#include <sanitizer/lsan_interface.h>
+#endif
+
 namespace qmotion::io::detail {
 
 UnitNames unit_names(const std::string& unit) {
@@ -103,6 +114,27 @@ void quiet_occt() {
     return true;
   }();
   (void)done;
+}
+
+namespace {
+
+/// Runs `init` with LeakSanitizer ignoring what it allocates (a no-op without the sanitizer).
+template <class F>
+void process_lifetime(F init) {
+#ifdef QMOTION_LEAK_CHECKED
+  const __lsan::ScopedDisabler lifetime_of_the_process;
+#endif
+  init();
+}
+
+}  // namespace
+
+void init_step_translator() {
+  process_lifetime([] { STEPControl_Controller::Init(); });
+}
+
+void init_iges_translator() {
+  process_lifetime([] { IGESControl_Controller::Init(); });
 }
 
 TColStd_Array1OfReal occt_reals(const std::vector<double>& v) {

@@ -28,6 +28,15 @@ UnitNames unit_names(const std::string& unit);
 /// prints to stdout; qmotion's stdout carries JSON, so the printers go (once).
 void quiet_occt();
 
+/// STEPControl_Controller::Init and IGESControl_Controller::Init: OpenCASCADE's translator
+/// tables, editors and parameters, made once and kept for the process's lifetime (OpenCASCADE
+/// frees none of them). In a build with AddressSanitizer these two calls run with leak
+/// tracking off: they are the only allocations the leak checker is told to ignore by name,
+/// since its fast unwinder cannot walk OpenCASCADE's frames to match a suppression there
+/// (docs/testing.md, "Leaks").
+void init_step_translator();
+void init_iges_translator();
+
 /// Numbers and integers as OpenCASCADE's 1-based arrays.
 TColStd_Array1OfReal occt_reals(const std::vector<double>& v);
 TColStd_Array1OfInteger occt_ints(const std::vector<int>& v);

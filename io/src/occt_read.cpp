@@ -250,7 +250,7 @@ CadGeometry read_cad_here(const std::string& path, bool want_surface, const std:
   TopoDS_Shape shape;
   try {
     if (ext == ".step" || ext == ".stp") {
-      STEPControl_Controller::Init();
+      init_step_translator();
       Interface_Static::SetCVal("xstep.cascade.unit", u.step);
       UnitsMethods::SetCasCadeLengthUnit(u.mm);
       STEPControl_Reader reader;
@@ -263,7 +263,7 @@ CadGeometry read_cad_here(const std::string& path, bool want_surface, const std:
       reader.TransferRoots();
       shape = reader.OneShape();
     } else if (ext == ".igs" || ext == ".iges") {
-      IGESControl_Controller::Init();
+      init_iges_translator();
       Interface_Static::SetCVal("xstep.cascade.unit", u.step);
       UnitsMethods::SetCasCadeLengthUnit(u.mm);
       Interface_Static::SetIVal("read.iges.bspline.continuity", 0);  // keep C0 B-splines whole

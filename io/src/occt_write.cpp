@@ -126,7 +126,7 @@ class SinkIndicator : public Message_ProgressIndicator {
 void write_step_shape(const std::string& path, const TopoDS_Shape& shape, const ExportInfo& info) {
   quiet_occt();
   const UnitNames u = unit_names(info.units);
-  STEPControl_Controller::Init();
+  init_step_translator();
   // Set the units for every transfer: a writer can carry the unit of an earlier one.
   Interface_Static::SetCVal("xstep.cascade.unit", u.step);
   Interface_Static::SetCVal("write.step.unit", u.step);
@@ -160,7 +160,7 @@ void write_iges_model(const std::string& path, const Handle(Standard_Transient) 
                       const TopoDS_Shape* shape, const ExportInfo& info) {
   quiet_occt();
   const UnitNames u = unit_names(info.units);
-  IGESControl_Controller::Init();
+  init_iges_translator();
   Interface_Static::SetCVal("xstep.cascade.unit", u.step);
   Interface_Static::SetCVal("write.iges.unit", u.iges);
   UnitsMethods::SetCasCadeLengthUnit(u.mm);
