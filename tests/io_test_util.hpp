@@ -1,7 +1,9 @@
 // tests/io_test_util.hpp: test data folder and error-message checks for io tests.
 #pragma once
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <filesystem>
 #include <functional>
 #include <qmotion/kernel/error.hpp>
 #include <string>
@@ -12,6 +14,23 @@ namespace qmotion::test {
 /// A file of the repository's test data (tests/data), whose path the build defines.
 inline std::string test_data(const std::string& rel) {
   return std::string(QMOTION_TEST_DATA) + "/" + rel;
+}
+
+/// `name` in this test process's scratch folder, <tmp>/qmotion_<tag>_<pid> (made when
+/// missing; a process's files never meet another's).
+inline std::filesystem::path scratch_path(const std::string& tag, const std::string& name) {
+  const auto d = std::filesystem::temp_directory_path() /
+                 ("qmotion_" + tag + "_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(d);
+  return d / name;
+}
+
+/// An empty folder `name` in the scratch folder of `tag` (emptied when it exists).
+inline std::filesystem::path fresh_dir(const std::string& tag, const std::string& name) {
+  const auto d = scratch_path(tag, name);
+  std::filesystem::remove_all(d);
+  std::filesystem::create_directories(d);
+  return d;
 }
 
 /// Runs f, expecting a qmotion::Error with `code` whose message contains every needle.

@@ -7,6 +7,7 @@
 #include <qmotion/io/exact_number.hpp>
 #endif
 #include <qmotion/io/json_number.hpp>
+#include <qmotion/io/nurbs_json.hpp>
 #include <qmotion/io/poses.hpp>
 #include <qmotion/kernel/error.hpp>
 #include <qmotion/kernel/interpolation.hpp>
@@ -19,8 +20,6 @@ using namespace io;  // NOLINT: the formats this call reads and writes
 namespace {
 
 using json = nlohmann::json;
-
-json vec_json(const Eigen::Vector3d& v) { return json{v(0), v(1), v(2)}; }
 
 /// Residual of the motion at every recorded pose (null when a parameter is missing). Exact
 /// Scalar: 0 where Q(t_i) is exactly proportional to P_i, else the double residual.
@@ -161,9 +160,9 @@ json motion_eval(const MotionFile& f, double t, const Eigen::Vector3d& x, std::s
   if (r.w() < 0) r = -r;
   json out;
   out["t"] = t;
-  out["position"] = vec_json(kernel::translation_vector(q));
+  out["position"] = point_json(kernel::translation_vector(q));
   out["quaternion"] = {r.w(), r.x(), r.y(), r.z()};
-  out["point"] = vec_json(kernel::apply_point(q, x));
+  out["point"] = point_json(kernel::apply_point(q, x));
   const double pl = kernel::plucker_residual(q);
   if (pl > 1e-9 && warning)
     *warning = "violates the Plucker condition at t (relative residual " + std::to_string(pl) +

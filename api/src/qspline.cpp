@@ -6,6 +6,7 @@
 #include <qmotion/io/atomic_file.hpp>
 #include <qmotion/io/json_number.hpp>
 #include <qmotion/io/motion_json.hpp>
+#include <qmotion/io/nurbs_json.hpp>
 #include <qmotion/io/units.hpp>
 #include <qmotion/kernel/error.hpp>
 #include <qmotion/kernel/parametrization.hpp>
@@ -30,7 +31,6 @@ json kks_record(const kernel::QuaternionSpline& s) {
 }
 
 json quat_json(const Quaternion<double>& q) { return json{q.w(), q.x(), q.y(), q.z()}; }
-json vec_json(const Eigen::Vector3d& v) { return json{v(0), v(1), v(2)}; }
 
 /// --tension: one number for every key or one per key, finite and not negative.
 std::vector<double> tensions(const std::string& text, std::size_t keys) {
@@ -157,10 +157,10 @@ json qspline_eval(const kernel::QuaternionSpline& s, double t, const Eigen::Vect
   const Eigen::Vector3d p = s.position(t);
   json out;
   out["t"] = t;
-  out["position"] = vec_json(p);
+  out["position"] = point_json(p);
   out["quaternion"] = quat_json(r);
-  out["point"] = vec_json(kernel::rotate(r, point) + p);
-  out["angular_velocity"] = vec_json(s.angular_velocity(t));
+  out["point"] = point_json(kernel::rotate(r, point) + p);
+  out["angular_velocity"] = point_json(s.angular_velocity(t));
   return out;
 }
 

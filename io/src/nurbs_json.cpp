@@ -8,8 +8,6 @@ namespace qmotion::io {
 namespace {
 using json = nlohmann::json;
 
-json point_json(const Eigen::Vector3d& p) { return json{p(0), p(1), p(2)}; }
-
 std::vector<double> read_array(const json& j, const std::string& where) {
   if (!j.is_array()) throw Error(Errc::invalid_input, where + ": expected an array of numbers");
   std::vector<double> v;

@@ -4,6 +4,7 @@
 #include <qmotion/io/atomic_file.hpp>
 #include <qmotion/io/json_number.hpp>
 #include <qmotion/io/motion_json.hpp>
+#include <qmotion/io/nurbs_json.hpp>
 #include <qmotion/io/qspline_file.hpp>
 #include <qmotion/io/units.hpp>
 #include <qmotion/kernel/error.hpp>
@@ -136,7 +137,6 @@ Motion qspline_motion(const json& doc, const std::string& source) {
 json qspline_document(const Motion& motion) {
   const kernel::QuaternionSpline& s = motion.spline();
   auto quat = [](const Quaternion<double>& q) { return json{q.w(), q.x(), q.y(), q.z()}; };
-  auto vec = [](const Eigen::Vector3d& v) { return json{v(0), v(1), v(2)}; };
   json doc;
   doc["type"] = "quaternion-spline";
   doc["scheme"] = kernel::to_string(s.scheme);
@@ -145,14 +145,14 @@ json qspline_document(const Motion& motion) {
   doc["knots"] = s.knots;
   json k = json::array(), p = json::array();
   for (const auto& q : s.keys) k.push_back(quat(q));
-  for (const auto& x : s.positions) p.push_back(vec(x));
+  for (const auto& x : s.positions) p.push_back(point_json(x));
   doc["keys"] = k;
   doc["positions"] = p;
   if (s.scheme == QSplineScheme::quintic) doc["tension"] = s.tension;
   if (s.scheme == QSplineScheme::kks) {
     json c = json::array(), cp = json::array();
     for (const auto& q : s.ctrl) c.push_back(quat(q));
-    for (const auto& x : s.pctrl) cp.push_back(vec(x));
+    for (const auto& x : s.pctrl) cp.push_back(point_json(x));
     doc["control_quaternions"] = c;
     doc["control_positions"] = cp;
   }

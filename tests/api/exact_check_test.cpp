@@ -16,12 +16,6 @@ namespace qmotion::test {
 namespace {
 namespace fs = std::filesystem;
 
-std::string scratch(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("qmotion_exact_" + std::to_string(::getpid()));
-  fs::create_directories(d);
-  return (d / name).string();
-}
-
 struct Case {
   std::string poses;
   qmotion::InterpolateOptions options;
@@ -51,7 +45,7 @@ TEST(ExactCheck, GcdOrderEqualsTheSylvesterRankAndTheWrittenDegree) {
   for (const auto& c : cases()) {
     SCOPED_TRACE(c.poses + " " + c.options.rotation + " " + c.options.translation);
     const io::PoseSet set = io::read_poses(test_data(c.poses));
-    const std::string path = scratch("m" + std::to_string(k++) + ".json");
+    const std::string path = scratch_path("api", "m" + std::to_string(k++) + ".json").string();
     io::save_motion(qmotion::interpolate(set, c.options).motion.rational(), path);
     const auto report = qmotion::check_exact(path);
     EXPECT_TRUE(report["verified"].get<bool>()) << report.dump(1);
@@ -65,7 +59,7 @@ TEST(ExactCheck, GcdOrderEqualsTheSylvesterRankAndTheWrittenDegree) {
 // below a general point's 2k + m; the exact gcd finds the drop for that point.
 TEST(ExactCheck, TheOriginsTrajectoryUnderTrHasDegreeM) {
   const io::PoseSet set = io::read_poses(test_data("poses/five_positions.json"));  // m = 4
-  const std::string path = scratch("origin.json");
+  const std::string path = scratch_path("api", "origin.json").string();
   io::save_motion(qmotion::interpolate(set, {}).motion.rational(), path);
   const auto origin = qmotion::check_exact(path, Eigen::Vector3d::Zero());
   EXPECT_EQ(origin["order"]["gcd"], 4);

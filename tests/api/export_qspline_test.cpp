@@ -14,28 +14,18 @@
 #include <random>
 
 #include "io_test_util.hpp"
+#include "toolpath_util.hpp"
 
 namespace qmotion::test {
 namespace {
 namespace fs = std::filesystem;
 using V3 = Eigen::Vector3d;
 
-fs::path scratch(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("qmotion_qexport_" + std::to_string(::getpid()));
-  fs::create_directories(d);
-  return d / name;
-}
-
 qmotion::Motion motion(const std::string& scheme, const std::string& tension = "") {
   qmotion::QSplineOptions o;
   o.scheme = scheme;
   o.tension = tension;
   return qmotion::qspline(io::read_poses(test_data("helix_10.json")), o).motion;
-}
-
-/// The image of x under the motion itself (exp/log of its quaternions).
-V3 place(const qmotion::Motion& m, double t, const V3& x) {
-  return kernel::rotate(m.spline().rotation(t), x) + m.spline().position(t);
 }
 
 /// Largest distance between the points' trajectories at 401 parameters, their bounding box.

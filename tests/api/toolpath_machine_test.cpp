@@ -15,7 +15,6 @@
 
 namespace qmotion::test {
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 
 /// The numbers a toolpath file states, one row per point: x, y, z and, where written, the
 /// axis i, j, k (APT, CSV) or the machine words (G-code: every letter's value).

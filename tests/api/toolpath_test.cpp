@@ -18,7 +18,6 @@ namespace qmotion::test {
 namespace {
 namespace fs = std::filesystem;
 using V3 = Eigen::Vector3d;
-constexpr double kPi = 3.14159265358979323846;
 
 /// Dense evaluation of every segment against the exact motion (65 points each): the
 /// largest chord distance and axis angle from the blends of the end axes (radians).

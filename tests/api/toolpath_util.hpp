@@ -22,11 +22,10 @@ namespace qmotion::test {
 namespace fs = std::filesystem;
 using V3 = Eigen::Vector3d;
 
-inline fs::path scratch(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("qmotion_toolpath_" + std::to_string(::getpid()));
-  fs::create_directories(d);
-  return d / name;
-}
+/// A file in this test process's scratch folder.
+inline fs::path scratch(const std::string& name) { return scratch_path("api", name); }
+
+inline constexpr double kPi = 3.14159265358979323846;
 
 inline qmotion::Motion rational(const std::string& poses, const std::string& form = "") {
   qmotion::InterpolateOptions o;

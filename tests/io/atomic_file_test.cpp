@@ -11,22 +11,15 @@ namespace qmotion::test {
 namespace {
 namespace fs = std::filesystem;
 
-fs::path scratch(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("qmotion_atomic_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
-
 TEST(AtomicFile, WritesCompleteFileAndNoTemporary) {
-  const auto d = scratch("ok");
+  const auto d = fresh_dir("atomic", "ok");
   io::write_file_atomic((d / "a.json").string(), "{\"x\": 1}");
   EXPECT_EQ(io::read_text_file((d / "a.json").string()), "{\"x\": 1}");
   EXPECT_EQ(std::distance(fs::directory_iterator(d), fs::directory_iterator()), 1);
 }
 
 TEST(AtomicFile, UncommittedOutputLeavesNothing) {
-  const auto d = scratch("abort");
+  const auto d = fresh_dir("atomic", "abort");
   {
     io::AtomicOutput out((d / "b.step").string());
     std::ofstream(out.temp_path()) << "partial";
@@ -36,7 +29,7 @@ TEST(AtomicFile, UncommittedOutputLeavesNothing) {
 }
 
 TEST(AtomicFile, AWriterInPiecesAppearsWholeOnCommitAndNotBefore) {
-  const auto d = scratch("pieces");
+  const auto d = fresh_dir("atomic", "pieces");
   const auto path = (d / "c.json").string();
   {
     io::AtomicWriter w(path);
@@ -61,7 +54,7 @@ TEST(AtomicFile, AWriterInPiecesAppearsWholeOnCommitAndNotBefore) {
 TEST(AtomicFile, UnwritableFolderIsBadInputNamingThePath) {
   EXPECT_TRUE(throws_error([] { io::write_file_atomic("/nonexistent-dir/out.json", "x"); },
                            Errc::invalid_input, {"/nonexistent-dir/out.json"}));
-  const auto d = scratch("dir");
+  const auto d = fresh_dir("atomic", "dir");
   EXPECT_TRUE(throws_error([&] { io::write_file_atomic(d.string(), "x"); }, Errc::invalid_input,
                            {"directory"}));
 }
@@ -80,7 +73,7 @@ std::string refusal(const std::function<void()>& f) {
 // written file is read back whole; one byte over, the writer refuses with the reader's message
 // and leaves nothing, in each of the three ways qmotion writes.
 TEST(AtomicFile, WritingRefusesWhatReadingRefusesWithTheSameMessage) {
-  const auto d = scratch("limit");
+  const auto d = fresh_dir("atomic", "limit");
   const std::uintmax_t limit = 1000;
   const auto path = (d / "out.json").string();
   const std::string at_limit(limit, 'x');
@@ -121,7 +114,7 @@ TEST(AtomicFile, WritingRefusesWhatReadingRefusesWithTheSameMessage) {
 
 // The defaults agree: the real limit, on a sparse file one byte over it.
 TEST(AtomicFile, TheDefaultLimitIsOneForReadingAndWriting) {
-  const auto d = scratch("default_limit");
+  const auto d = fresh_dir("atomic", "default_limit");
   const auto path = (d / "big.step").string();
   std::ofstream(path, std::ios::binary).put('x');
   fs::resize_file(path, io::kMaxFileBytes + 1);

@@ -25,12 +25,6 @@ namespace {
 namespace fs = std::filesystem;
 using V3 = Eigen::Vector3d;
 
-fs::path scratch(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("qmotion_mesh_" + std::to_string(::getpid()));
-  fs::create_directories(d);
-  return d / name;
-}
-
 const kernel::Motion<double>& coil() {
   static const kernel::Motion<double> m =
       qmotion::interpolate(io::read_poses(test_data("self_intersection/coil_open.json")), {})
@@ -130,7 +124,7 @@ TEST(Mesh, SolidMeshesAreClosedOrientedAndWithinTheDeflection) {
   for (double D : {1.0, 0.1, 0.01}) {
     SCOPED_TRACE("deflection " + std::to_string(D));
     qmotion::ExportOptions o;
-    o.output = scratch("tube.ply").string();
+    o.output = scratch_path("mesh", "tube.ply").string();
     o.solid = true;
     o.deflection = D;
     const qmotion::ExportResult res =
@@ -184,10 +178,10 @@ TEST(Mesh, EveryFormatHoldsTheSameTriangles) {
   qmotion::ExportOptions o;
   o.solid = true;
   o.deflection = 0.1;
-  o.output = scratch("box.ply").string();
+  o.output = scratch_path("mesh", "box.ply").string();
   const auto ply = qmotion::export_geometry(coil(), qmotion::Geometry::sweep(profile), o);
   const std::size_t n = ply.mesh->triangles.size();
-  o.output = scratch("box.stl").string();  // binary: 80 + 4 + 50 per triangle
+  o.output = scratch_path("mesh", "box.stl").string();  // binary: 80 + 4 + 50 per triangle
   qmotion::export_geometry(coil(), qmotion::Geometry::sweep(profile), o);
   EXPECT_EQ(fs::file_size(o.output), 84 + 50 * n);
   {
@@ -204,7 +198,7 @@ TEST(Mesh, EveryFormatHoldsTheSameTriangles) {
         EXPECT_NEAR(rec[3 + 3 * k + c], ply.mesh->vertices[t[k]](c), 1e-5);
   }
   o.ascii = true;
-  o.output = scratch("box_ascii.stl").string();
+  o.output = scratch_path("mesh", "box_ascii.stl").string();
   qmotion::export_geometry(coil(), qmotion::Geometry::sweep(profile), o);
   std::ifstream stl(o.output);
   std::size_t facets = 0;
@@ -212,7 +206,7 @@ TEST(Mesh, EveryFormatHoldsTheSameTriangles) {
     facets += line.find("facet normal") != std::string::npos;
   EXPECT_EQ(facets, n);
   o.ascii = false;
-  o.output = scratch("box.obj").string();
+  o.output = scratch_path("mesh", "box.obj").string();
   qmotion::export_geometry(coil(), qmotion::Geometry::sweep(profile), o);
   std::ifstream obj(o.output);
   std::size_t faces = 0, verts = 0;
@@ -253,7 +247,7 @@ TEST(EvaluateGrid, EqualsPointwiseEvaluationSerialAndParallel) {
 
 TEST(Mesh, BadMeshOptionsAreRefusedAndWriteNothing) {
   const auto profile = io::read_profile("circle:3", "mm");
-  const std::string out = scratch("bad.stl").string();
+  const std::string out = scratch_path("mesh", "bad.stl").string();
   auto with = [&](auto change) {
     qmotion::ExportOptions o;
     o.output = out;

@@ -22,7 +22,6 @@ namespace qmotion::test {
 namespace {
 
 const std::string kExamples = QMOTION_EXAMPLES;
-const std::string kData = QMOTION_TEST_DATA;
 
 TEST(MotionJson, HandWrittenExamplesAreRigidAndFollowTheirTranslation) {
   // Both examples are (2 + eps p(t)) * r(t): the origin follows p(t) exactly.
@@ -101,7 +100,7 @@ TEST(MotionJson, EveryBadMotionIsRefusedWithItsReason) {
       {"quaternion_spline.json", {"quaternion-spline"}},
   };
   for (const auto& [name, needles] : cases) {
-    const std::string path = kData + "/bad_motions/" + name;
+    const std::string path = test_data("bad_motions/") + name;
     try {
       io::read_motion(path);
       ADD_FAILURE() << name << " was accepted";
@@ -121,11 +120,11 @@ std::vector<std::pair<std::string, std::string>> motion_texts() {
   for (const auto& f :
        {kExamples + "/motions/bezier_tr.json", kExamples + "/motions/bspline_tr.json"})
     out.emplace_back(f, io::read_text_file(f));
-  for (const auto& e : std::filesystem::directory_iterator(kData + "/motions_v1"))
+  for (const auto& e : std::filesystem::directory_iterator(test_data("motions_v1")))
     out.emplace_back(e.path().string(), io::read_text_file(e.path().string()));
   qmotion::InterpolateOptions opt;
   opt.form = "bspline";
-  const auto m = qmotion::interpolate(io::read_poses(kData + "/helix_10.json"), opt);
+  const auto m = qmotion::interpolate(io::read_poses(test_data("helix_10.json")), opt);
   out.emplace_back("interpolated.json", m.text());
   out.emplace_back("interpolated_tree.json", m.document().dump(1));
   return out;
@@ -143,11 +142,11 @@ TEST(MotionJson, StreamedTextIsTheTreesDocumentAndReadsBackBitForBit) {
     std::string poses, form, rotation, translation;
   };
   const std::vector<Case> cases{
-      {kData + "/poses/five_positions.json", "bezier", "elliptic", "tr"},
-      {kData + "/poses/five_positions.json", "bezier", "affine", "trt"},
-      {kData + "/poses/screw_three.json", "bezier", "projective", "minimal"},
-      {kData + "/poses/helix_40.json", "bspline", "elliptic", "tr"},
-      {kData + "/poses/helix_40.json", "c1", "elliptic", "minimal"},
+      {test_data("poses/five_positions.json"), "bezier", "elliptic", "tr"},
+      {test_data("poses/five_positions.json"), "bezier", "affine", "trt"},
+      {test_data("poses/screw_three.json"), "bezier", "projective", "minimal"},
+      {test_data("poses/helix_40.json"), "bspline", "elliptic", "tr"},
+      {test_data("poses/helix_40.json"), "c1", "elliptic", "minimal"},
       {"", "bspline", "elliptic", "minimal"},
       {"", "bezier", "elliptic", "trt"}};
   for (const auto& c : cases) {
@@ -443,7 +442,7 @@ TEST(MotionJson, TheRowScannerReadsEveryNumberFormAsTheDomReaderOnEveryCore) {
 
 TEST(MotionJson, BadMotionsGetTheDomReadersMessageThroughTheFastReader) {
   int refused = 0;
-  for (const auto& e : std::filesystem::directory_iterator(kData + "/bad_motions")) {
+  for (const auto& e : std::filesystem::directory_iterator(test_data("bad_motions"))) {
     const std::string path = e.path().string();
     const std::string text = io::read_text_file(path);
     std::string via_dom, via_file;

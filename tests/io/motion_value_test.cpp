@@ -27,14 +27,6 @@ using kernel::RotationMethod;
 using kernel::TranslationMethod;
 using V3 = Eigen::Vector3d;
 
-const std::string kData = QMOTION_TEST_DATA;
-
-fs::path scratch() {
-  const fs::path d = fs::temp_directory_path() / "qmotion_motion_value_test";
-  fs::create_directories(d);
-  return d;
-}
-
 template <typename Coef>
 void expect_same_spline(const kernel::BSpline<Coef>& a, const kernel::BSpline<Coef>& b,
                         const std::string& what, double rel_tol = 0) {
@@ -137,7 +129,7 @@ void expect_consistent(const Motion<double>& m) {
 }
 
 std::vector<kernel::Pose<double>> poses_of(const std::string& rel) {
-  return io::to_poses_double(io::read_poses(kData + "/" + rel));
+  return io::to_poses_double(io::read_poses(test_data(rel)));
 }
 
 TEST(MotionValue, EveryInterpolatorsMotionSurvivesSaveAndLoad) {
@@ -167,7 +159,8 @@ TEST(MotionValue, EveryInterpolatorsMotionSurvivesSaveAndLoad) {
     m.units = "cm";
     m.provenance->param = "chordal";
     expect_consistent(m);
-    const std::string path = (scratch() / ("m" + std::to_string(i++) + ".json")).string();
+    const std::string path =
+        scratch_path("motion_value", "m" + std::to_string(i++) + ".json").string();
     io::save_motion(m, path);
     const Motion<double> back = io::load_motion(path).rational();
     EXPECT_EQ(back.name, path);
@@ -205,7 +198,7 @@ TEST(MotionValue, FilesWrittenBeforeTheTypeStillRead) {
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.file);
-    const std::string path = kData + "/motions_v1/" + c.file;
+    const std::string path = test_data("motions_v1/") + c.file;
     const Motion<double> m = io::load_motion(path).rational();
     expect_consistent(m);
     const auto& p = *m.provenance;
@@ -236,7 +229,7 @@ TEST(MotionValue, FilesWrittenBeforeTheTypeStillRead) {
 
 #ifdef QMOTION_WITH_CGAL
 TEST(MotionValue, ExactMotionsWriteExactDocuments) {
-  const auto P = io::to_poses_exact(io::read_poses(kData + "/poses/rational_exact.json"));
+  const auto P = io::to_poses_exact(io::read_poses(test_data("poses/rational_exact.json")));
   std::vector<kernel::Rational> t;
   for (const auto& p : P) t.push_back(*p.t);
   kernel::SplineOptions so;
@@ -309,7 +302,7 @@ TEST(MotionValue, MalformedMethodBlocksAreRefusedWithHowToRegenerate) {
            {"method_parameters_count.json", "method.parameters"},
            {"method_bad_input_poses.json", "method.input_poses"},
            {"method_bad_degree.json", "method.rotation_degree"}}) {
-    const std::string path = kData + "/bad_motions/" + file;
+    const std::string path = test_data("bad_motions/") + file;
     try {
       io::load_motion(path);
       ADD_FAILURE() << file << " was accepted";
@@ -331,7 +324,7 @@ TEST(MotionValue, FactorRowsOfTheWrongWidthGetOneMessageFromBothReaders) {
   for (const auto& [file, field] : std::vector<std::pair<std::string, std::string>>{
            {"method_factor_row_short.json", "method.rotation_control_points[1]: expected 4"},
            {"method_factor_rows_of_three.json", "method.rotation_control_points[0]: expected 4"}}) {
-    const std::string path = kData + "/bad_motions/" + file;
+    const std::string path = test_data("bad_motions/") + file;
     const std::string text = io::read_text_file(path);
     std::string fast, tree;
     try {

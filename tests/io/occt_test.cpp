@@ -16,12 +16,6 @@ namespace qmotion::test {
 namespace {
 namespace fs = std::filesystem;
 
-fs::path scratch(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("qmotion_occt_" + std::to_string(::getpid()));
-  fs::create_directories(d);
-  return d / name;
-}
-
 /// A rational surface with awkward numbers (non-dyadic, mixed magnitudes) and an interior
 /// knot of multiplicity 2.
 sweep::NurbsSurface<double> awkward_surface() {
@@ -58,7 +52,7 @@ TEST(OcctRoundTrip, SurfacesAndCurvesComeBackBitForBit) {
   const auto c = sweep::arc(7.0 / 3.0, 10.0, 300.0);
   for (const std::string ext : {".step", ".igs"}) {
     SCOPED_TRACE(ext);
-    const auto sp = scratch("surface" + ext), cp = scratch("curve" + ext);
+    const auto sp = scratch_path("occt", "surface" + ext), cp = scratch_path("occt", "curve" + ext);
     if (ext == ".step") {
       io::write_step(sp.string(), s, {});
       io::write_step(cp.string(), c, {});
@@ -92,7 +86,8 @@ TEST(OcctUnits, TheDeclaredUnitIsTheOneTheNumbersAreIn) {
   for (const std::string ext : {".step", ".igs"}) {
     io::ExportInfo in;
     in.units = "in";
-    const auto pin = scratch("inch" + ext), pmm = scratch("mm_after_inch" + ext);
+    const auto pin = scratch_path("occt", "inch" + ext),
+               pmm = scratch_path("occt", "mm_after_inch" + ext);
     ext == ".step" ? io::write_step(pin.string(), c, in) : io::write_iges(pin.string(), c, in);
     // A writer can carry the unit of an earlier transfer: write mm right after inches.
     ext == ".step" ? io::write_step(pmm.string(), c, {}) : io::write_iges(pmm.string(), c, {});
@@ -113,10 +108,10 @@ TEST(OcctMetadata, HeadersNameTheProductAndTheMotion) {
   io::ExportInfo info;
   info.product = "qmotion test product";
   info.description = "kinematic surface of motion demo_motion.json";
-  io::write_step(scratch("meta.step").string(), s, info);
-  io::write_iges(scratch("meta.igs").string(), s, info);
-  const std::string step = io::read_text_file(scratch("meta.step").string());
-  const std::string iges = io::read_text_file(scratch("meta.igs").string());
+  io::write_step(scratch_path("occt", "meta.step").string(), s, info);
+  io::write_iges(scratch_path("occt", "meta.igs").string(), s, info);
+  const std::string step = io::read_text_file(scratch_path("occt", "meta.step").string());
+  const std::string iges = io::read_text_file(scratch_path("occt", "meta.igs").string());
   EXPECT_NE(step.find("demo_motion.json"), std::string::npos);
   EXPECT_NE(step.find("qmotion test product"), std::string::npos);
   EXPECT_NE(step.find("E+02"), std::string::npos);  // exponent format of %.17E
@@ -128,7 +123,7 @@ TEST(OcctMetadata, HeadersNameTheProductAndTheMotion) {
 // crashed earlier builds: each crash stays in the child process that read the file, and
 // comes back as a refusal naming the file. This process reads a good file after each.
 TEST(OcctErrors, AReadersCrashIsARefusalAndTheCallerGoesOn) {
-  const auto good = scratch("after_crash.step");
+  const auto good = scratch_path("occt", "after_crash.step");
   io::write_step(good.string(), sweep::circle(2.0), {});
   const auto want = io::read_cad(good.string(), false).curve;
   int crashed = 0;
@@ -181,7 +176,7 @@ TEST(OcctErrors, BadFilesAndGeometryAreRefused) {
     high.weights.push_back(1.0);
   }
   EXPECT_EQ(io::occt_max_degree(), 25);
-  const auto out = scratch("high.step");
+  const auto out = scratch_path("occt", "high.step");
   EXPECT_TRUE(throws_error([&] { io::write_step(out.string(), high, {}); }, Errc::export_failed,
                            {"OpenCASCADE"}));
   EXPECT_FALSE(fs::exists(out));
@@ -193,7 +188,7 @@ TEST(OcctErrors, DamagedIgesRecordsAreRefusedEvenAfterAGoodRead) {
   // before them were filed under freed memory (a crash the fuzzer found on a second read).
   // So each case reads a good file first, then a damaged variant of it.
   const auto c = sweep::arc(7.0 / 3.0, 10.0, 300.0);
-  const auto good = scratch("good.igs");
+  const auto good = scratch_path("occt", "good.igs");
   io::write_iges(good.string(), c, {});
   const std::string text = io::read_text_file(good.string());
   std::vector<std::string> lines;
@@ -268,7 +263,7 @@ TEST(OcctErrors, DamagedIgesRecordsAreRefusedEvenAfterAGoodRead) {
   for (const auto& k : cases) {
     SCOPED_TRACE(k.name);
     ASSERT_NO_THROW(io::read_cad(good.string(), false));
-    const auto bad = scratch(std::string(k.name) + ".igs");
+    const auto bad = scratch_path("occt", std::string(k.name) + ".igs");
     {
       std::ofstream out(bad, std::ios::binary);
       out << k.text;
@@ -281,7 +276,7 @@ TEST(OcctErrors, DamagedIgesRecordsAreRefusedEvenAfterAGoodRead) {
   // The three line ends OpenCASCADE reads: the same curve, bit for bit.
   const auto want = io::read_cad(good.string(), false).curve;
   for (const std::string eol : {"\r\n", "\r"}) {
-    const auto f = scratch(eol.size() == 2 ? "crlf.igs" : "cr.igs");
+    const auto f = scratch_path("occt", eol.size() == 2 ? "crlf.igs" : "cr.igs");
     {
       std::ofstream out(f, std::ios::binary);
       out << joined(lines, eol);
@@ -309,8 +304,8 @@ TEST(Profiles, EveryKindReads) {
   EXPECT_EQ(one("segment:0,0,0:1,2,3").points.back(), Eigen::Vector3d(1, 2, 3));
   // A STEP profile: its first edge, converted exactly.
   const auto c = sweep::circle(3.0);
-  io::write_step(scratch("circle.step").string(), c, {});
-  const auto back = one(scratch("circle.step").string());
+  io::write_step(scratch_path("occt", "circle.step").string(), c, {});
+  const auto back = one(scratch_path("occt", "circle.step").string());
   for (int i = 0; i <= 20; ++i)
     EXPECT_NEAR(sweep::evaluate(
                     back, back.knots.front() + (back.knots.back() - back.knots.front()) * i / 20.0)
@@ -352,8 +347,8 @@ TEST(Profiles, WiresOfSeveralEdges) {
   ASSERT_EQ(w.edges.size(), 2u);
   EXPECT_TRUE(w.closed);
   // A STEP wire: every edge, in order, each reading back its curve exactly.
-  io::write_step(scratch("rect.step").string(), r.edges, {});
-  const auto rb = io::read_profile(scratch("rect.step").string());
+  io::write_step(scratch_path("occt", "rect.step").string(), r.edges, {});
+  const auto rb = io::read_profile(scratch_path("occt", "rect.step").string());
   ASSERT_EQ(rb.edges.size(), 4u);
   EXPECT_TRUE(rb.closed);
   for (std::size_t k = 0; k < 4; ++k)

@@ -18,8 +18,6 @@
 namespace qmotion::test {
 namespace {
 
-const std::string kData = QMOTION_TEST_DATA;
-
 TEST(Poses, SharedSamplesReadWithEveryRotationForm) {
   const auto set = io::read_poses(test_data("poses/five_positions.json"));
   ASSERT_EQ(set.poses.size(), 5u);
@@ -67,7 +65,7 @@ TEST(Poses, MatrixRotationsMatchTheirQuaternion) {
 }
 
 TEST(Poses, CsvWithAndWithoutT) {
-  const auto set = io::read_poses(kData + "/good_poses.csv");
+  const auto set = io::read_poses(test_data("good_poses.csv"));
   ASSERT_EQ(set.poses.size(), 3u);
   EXPECT_TRUE(set.has_t());
   const auto P = io::to_poses_double(set);
@@ -160,7 +158,7 @@ void expect_same_numbers(const io::Number& a, const io::Number& b, const std::st
 
 TEST(Poses, TheFastReaderReadsWhatTheTreeReaderReads) {
   std::vector<std::pair<std::string, std::string>> inputs;
-  for (const auto& dir : {kData + "/poses", kData + "/bad_poses"})
+  for (const auto& dir : {test_data("poses"), test_data("bad_poses")})
     for (const auto& e : std::filesystem::directory_iterator(dir))
       if (e.path().extension() == ".json")
         inputs.emplace_back(e.path().filename().string(), io::read_text_file(e.path().string()));
@@ -221,7 +219,8 @@ TEST(Poses, TheFastReaderReadsWhatTheTreeReaderReads) {
   }
   // The ordinary files (every rotation form) are read by the fast path.
   EXPECT_GE(fast, 6);
-  EXPECT_FALSE(io::parse_poses_fast(io::read_text_file(kData + "/poses/rational_exact.json"), "r"));
+  EXPECT_FALSE(
+      io::parse_poses_fast(io::read_text_file(test_data("poses/rational_exact.json")), "r"));
 }
 
 struct BadCase {
@@ -235,26 +234,26 @@ TEST(Poses, EveryBadInputIsRefusedWithItsReason) {
       {test_data("bad_poses/bad_nan.json"), {"NaN"}},
       {test_data("bad_poses/bad_single_pose.json"), {"at least two poses"}},
       {test_data("bad_poses/bad_zero_quaternion.json"), {"pose 1", "zero quaternion"}},
-      {kData + "/bad_poses/malformed.json", {"invalid JSON", "line 1"}},
-      {kData + "/bad_poses/missing_position.json", {"pose 1", "position"}},
-      {kData + "/bad_poses/missing_rotation.json", {"pose 1", "rotation"}},
-      {kData + "/bad_poses/string_nan.json", {"poses[1].position[1]", "finite"}},
-      {kData + "/bad_poses/infinity.json", {"line 1, column", "1e999", "range"}},
-      {kData + "/bad_poses/equal_t.json", {"pose 2", "increase"}},
-      {kData + "/bad_poses/mixed_t.json", {"pose 1", "every pose or for none"}},
-      {kData + "/bad_poses/bad_matrix.json", {"pose 1", "not orthogonal"}},
-      {kData + "/bad_poses/reflection.json", {"pose 1", "reflection"}},
-      {kData + "/bad_poses/zero_axis.json", {"pose 1", "axis"}},
-      {kData + "/bad_poses/wrong_arity.json", {"poses[1].rotation.quaternion", "expected 4"}},
-      {kData + "/bad_poses/empty_poses.json", {"at least two poses", "found 0"}},
-      {kData + "/bad_poses/two_rotation_forms.json", {"pose 1", "only one"}},
-      {kData + "/bad_poses/bad_units.json", {"units"}},
-      {kData + "/bad_poses/bad_rational.json", {"poses[1].t", "zero denominator"}},
-      {kData + "/bad_poses/bad_header.csv", {"line 1", "header"}},
-      {kData + "/bad_poses/short_row.csv", {"line 3", "pose 1", "expected 8"}},
-      {kData + "/bad_poses/not_number.csv", {"line 3", "'x'", "not a number"}},
-      {kData + "/bad_poses/zero_quaternion.csv", {"pose 1", "zero quaternion"}},
-      {kData + "/bad_poses/does_not_exist.json", {"does_not_exist.json", "cannot open"}},
+      {test_data("bad_poses/malformed.json"), {"invalid JSON", "line 1"}},
+      {test_data("bad_poses/missing_position.json"), {"pose 1", "position"}},
+      {test_data("bad_poses/missing_rotation.json"), {"pose 1", "rotation"}},
+      {test_data("bad_poses/string_nan.json"), {"poses[1].position[1]", "finite"}},
+      {test_data("bad_poses/infinity.json"), {"line 1, column", "1e999", "range"}},
+      {test_data("bad_poses/equal_t.json"), {"pose 2", "increase"}},
+      {test_data("bad_poses/mixed_t.json"), {"pose 1", "every pose or for none"}},
+      {test_data("bad_poses/bad_matrix.json"), {"pose 1", "not orthogonal"}},
+      {test_data("bad_poses/reflection.json"), {"pose 1", "reflection"}},
+      {test_data("bad_poses/zero_axis.json"), {"pose 1", "axis"}},
+      {test_data("bad_poses/wrong_arity.json"), {"poses[1].rotation.quaternion", "expected 4"}},
+      {test_data("bad_poses/empty_poses.json"), {"at least two poses", "found 0"}},
+      {test_data("bad_poses/two_rotation_forms.json"), {"pose 1", "only one"}},
+      {test_data("bad_poses/bad_units.json"), {"units"}},
+      {test_data("bad_poses/bad_rational.json"), {"poses[1].t", "zero denominator"}},
+      {test_data("bad_poses/bad_header.csv"), {"line 1", "header"}},
+      {test_data("bad_poses/short_row.csv"), {"line 3", "pose 1", "expected 8"}},
+      {test_data("bad_poses/not_number.csv"), {"line 3", "'x'", "not a number"}},
+      {test_data("bad_poses/zero_quaternion.csv"), {"pose 1", "zero quaternion"}},
+      {test_data("bad_poses/does_not_exist.json"), {"does_not_exist.json", "cannot open"}},
   };
   for (const auto& c : cases) {
     std::vector<std::string> needles = c.needles;

@@ -11,15 +11,11 @@
 #include <random>
 
 #include "io_test_util.hpp"
+#include "sweep_util.hpp"
 
 namespace qmotion::test {
 namespace {
 using V3 = Eigen::Vector3d;
-
-struct Built {
-  kernel::Motion<double> r;
-  sweep::MotionFactors<double> f;
-};
 
 /// Elliptic + TR Bezier motion through poses given as (t, position, axis, angle in degrees).
 Built motion(const std::vector<std::tuple<double, V3, V3, double>>& poses) {

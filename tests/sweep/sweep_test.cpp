@@ -14,6 +14,7 @@
 #include <random>
 
 #include "io_test_util.hpp"
+#include "sweep_util.hpp"
 #include "test_util.hpp"
 
 namespace qmotion::test {
@@ -24,11 +25,6 @@ using V3 = Eigen::Vector3d;
 
 /// A motion without recorded factors (hand-written).
 kernel::Motion<double> bare(const kernel::QMotion<double>& m) { return kernel::Motion<double>(m); }
-
-struct Built {
-  kernel::Motion<double> r;
-  sweep::MotionFactors<double> f;
-};
 
 Built build(const std::vector<kernel::Pose<double>>& P, RotationMethod rot, TranslationMethod tr) {
   kernel::InterpolationOptions o;

@@ -7,6 +7,9 @@
 
 namespace qmotion::io {
 
+/// A point or a vector as the JSON array [x, y, z].
+inline nlohmann::json point_json(const Eigen::Vector3d& p) { return {p(0), p(1), p(2)}; }
+
 /// {"type":"nurbs_curve","degree","knots","control_points","weights"} (docs/formats.md).
 nlohmann::json curve_to_json(const sweep::NurbsCurve<double>& c);
 /// {"type":"nurbs_surface","degree_u","degree_v","knots_u","knots_v","control_points","weights"}.
