@@ -1,5 +1,6 @@
-// tests/api/toolpath_util.hpp: what the toolpath tests share: scratch files, motions from
-// the test data, exact placements, and distances to chords and arcs of axes.
+// tests/api/toolpath_util.hpp: what the api tests share (the toolpath tests most): scratch
+// files, motions from the test data, exact placements, and distances to chords and arcs of
+// axes.
 #pragma once
 #include <gtest/gtest.h>
 #include <unistd.h>

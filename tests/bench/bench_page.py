@@ -5,8 +5,9 @@ Runs every Google Benchmark program of tests/bench (built with QMOTION_BUILD_BEN
 in one session, one after the other, with --benchmark_format=json, and writes a page with
 the date, the machine, the compiler, the build type and the commit it measured, a table per
 program, the peak memory of each command against its largest file at 10^4 poses
-(tests/bench/memory.sh, raw figures), and the ratios of qmotion against the peers it is measured beside (OpenCASCADE's
-fitting and evaluation, nlohmann-json's tree, a plain ofstream) from that same run. The page
+(tests/bench/memory.sh, raw figures), and the ratios of qmotion against the peers it is
+measured beside (OpenCASCADE's fitting and evaluation, nlohmann-json's tree, a plain
+ofstream) from that same run. The page
 is never edited by hand: run this script again.
 
 Usage: bench_page.py --build BUILD [--out docs/benchmarks.md] [--min-time 0.2]

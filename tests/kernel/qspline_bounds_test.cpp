@@ -12,8 +12,6 @@ namespace {
 using V3 = Eigen::Vector3d;
 using kernel::QuaternionSpline;
 
-QuaternionSpline spline(kernel::QSplineScheme scheme) { return six_key_spline(scheme); }
-
 // The bounds hold: central second differences of the position and of the rotation matrix,
 // at 400 points of random intervals (each inside one segment, and some across two), never
 // exceed them; and they are not loose beyond a small factor where the intervals are short.
@@ -21,7 +19,7 @@ TEST(QSplineBounds, SecondDerivativesStayWithinTheBounds) {
   std::mt19937 rng(11);
   for (auto scheme : {kernel::QSplineScheme::kks, kernel::QSplineScheme::quintic,
                       kernel::QSplineScheme::quartic}) {
-    const QuaternionSpline s = spline(scheme);
+    const QuaternionSpline s = six_key_spline(scheme);
     SCOPED_TRACE(kernel::to_string(s.scheme));
     std::uniform_real_distribution<double> where(s.a(), s.b());
     double worst_ratio = 0;
@@ -56,7 +54,7 @@ TEST(QSplineBounds, SecondDerivativesStayWithinTheBounds) {
 }
 
 TEST(QSplineBounds, RefusesAnIntervalOutsideTheSpline) {
-  const QuaternionSpline s = spline(kernel::QSplineScheme::kks);
+  const QuaternionSpline s = six_key_spline(kernel::QSplineScheme::kks);
   EXPECT_THROW(kernel::second_derivative_bound(s, 1, 0.5), Error);
   EXPECT_THROW(kernel::second_derivative_bound(s, -1, 0.5), Error);
   EXPECT_THROW(kernel::second_derivative_bound(s, 0, std::nan("")), Error);

@@ -14,8 +14,6 @@ using V4 = Eigen::Vector4d;
 using kernel::Quaternion;
 using kernel::QuaternionSpline;
 
-QuaternionSpline spline(kernel::QSplineScheme scheme) { return six_key_spline(scheme); }
-
 /// The largest deviation of the fitted trajectories of `pts` from the spline's at 3000
 /// random parameters: independent of the fit's own grids.
 double independent_deviation(const QuaternionSpline& s, const sweep::FrameFit& f,
@@ -39,7 +37,7 @@ TEST(FitFrames, EverySchemeIsWithinTheToleranceAndPolesGrowAsItShrinks) {
   const std::vector<V3> pts{V3(0, 0, 0), V3(5, 0, 0), V3(5, 3, 0), V3(0, 3, -1)};
   for (auto scheme : {kernel::QSplineScheme::kks, kernel::QSplineScheme::quintic,
                       kernel::QSplineScheme::quartic}) {
-    const QuaternionSpline s = spline(scheme);
+    const QuaternionSpline s = six_key_spline(scheme);
     SCOPED_TRACE(kernel::to_string(s.scheme));
     int last_poles = 0;
     for (double tol : {1e-3, 1e-6, 1e-9}) {
@@ -90,7 +88,7 @@ TEST(FitFrames, TheDeviationBoundIsProvenAndTight) {
   int under_read = 0;
   for (auto scheme : {kernel::QSplineScheme::kks, kernel::QSplineScheme::quintic,
                       kernel::QSplineScheme::quartic}) {
-    const QuaternionSpline s = spline(scheme);
+    const QuaternionSpline s = six_key_spline(scheme);
     for (double tol : {1e-3, 1e-6, 1e-9}) {
       SCOPED_TRACE(std::string(kernel::to_string(s.scheme)) + " tol " + std::to_string(tol));
       sweep::FrameFitOptions o;
@@ -111,7 +109,7 @@ TEST(FitFrames, TheDeviationBoundIsProvenAndTight) {
 // The generic entry point takes the motion's second-derivative bound, and the certificate's
 // grid follows it: the spline's own bound asks for more samples than a (false) zero bound.
 TEST(FitFrames, TheCertificateUsesTheMotionsBound) {
-  const QuaternionSpline s = spline(kernel::QSplineScheme::kks);
+  const QuaternionSpline s = six_key_spline(kernel::QSplineScheme::kks);
   sweep::FrameFitOptions o;
   o.tol = 1e-6;
   const std::vector<V3> pts{V3(5, 3, 0)};
@@ -125,13 +123,14 @@ TEST(FitFrames, TheCertificateUsesTheMotionsBound) {
 }
 
 TEST(FitFrames, KnotMultiplicityFollowsTheMotionsContinuity) {
-  const QuaternionSpline q = spline(kernel::QSplineScheme::quintic);  // unequal spans: C0 in u
+  const QuaternionSpline q =
+      six_key_spline(kernel::QSplineScheme::quintic);  // unequal spans: C0 in u
   sweep::FrameFitOptions o;
   o.tol = 1e-6;
   const auto f = sweep::fit_frames(q, {V3(1, 2, 3)}, o);
   for (std::size_t k = 1; k + 1 < q.knots.size(); ++k)
     EXPECT_EQ(kernel::continuity_at(f.matrix, q.knots[k]), 0) << "key " << k;
-  const QuaternionSpline s = spline(kernel::QSplineScheme::kks);  // C2
+  const QuaternionSpline s = six_key_spline(kernel::QSplineScheme::kks);  // C2
   const auto g = sweep::fit_frames(s, {V3(1, 2, 3)}, o);
   for (std::size_t k = 1; k + 1 < s.knots.size(); ++k)
     EXPECT_GE(kernel::continuity_at(g.matrix, s.knots[k]), 2) << "key " << k;
@@ -140,7 +139,7 @@ TEST(FitFrames, KnotMultiplicityFollowsTheMotionsContinuity) {
 TEST(FitFrames, SixthOrderConvergence) {
   // Degree 5: the error falls like h^6, so 1000 times less asks about 10^(1/2) times the spans
   // (not 1000^(1/4) = 5.6 of a cubic). Allow 2x for the adaptivity's granularity.
-  const QuaternionSpline s = spline(kernel::QSplineScheme::kks);
+  const QuaternionSpline s = six_key_spline(kernel::QSplineScheme::kks);
   auto spans = [&](double tol, int degree) {
     sweep::FrameFitOptions o;
     o.tol = tol;
@@ -154,7 +153,7 @@ TEST(FitFrames, SixthOrderConvergence) {
 }
 
 TEST(FitFrames, RefusesWhatItCannotReach) {
-  const QuaternionSpline s = spline(kernel::QSplineScheme::kks);
+  const QuaternionSpline s = six_key_spline(kernel::QSplineScheme::kks);
   sweep::FrameFitOptions o;
   o.tol = 1e-9;
   o.degree = 1;
