@@ -62,6 +62,9 @@ Command add_sweep(CLI::App& app) {
           std::cerr << "qmotion: warning: the sweep intersects itself ("
                     << r.self_intersection->pairs << " crossing triangle pairs; "
                     << r.self_intersection->ranges() << ")\n";
+        if (r.self_intersection_proof)
+          std::cerr << (r.self_intersection_proof->proven() ? "qmotion: " : "qmotion: warning: ")
+                    << "the sweep " << r.self_intersection_proof->describe() << "\n";
         std::cerr << "qmotion: wrote " << r.path << " (degrees " << r.degree_u << " x "
                   << r.degree_v << ", C" << r.continuity_u << " x C" << r.continuity_v << ", "
                   << r.faces << (r.faces == 1 ? " face, " : " faces, ") << r.poles << " poles, "

@@ -101,6 +101,15 @@ json result_json(const ExportResult& r) {
     j["self_intersecting"] = r.self_intersection->found();
     if (r.self_intersection->found()) j["self_intersection"] = r.self_intersection->ranges();
   }
+  if (r.self_intersection_proof) {
+    const auto& p = *r.self_intersection_proof;
+    j["self_intersection_proof"] = json{{"status", sweep::SelfIntersectionProof::name(p.status)},
+                                        {"proven", p.proven()},
+                                        {"patches", p.patches},
+                                        {"pairs", p.pairs},
+                                        {"depth", p.depth},
+                                        {"message", p.describe()}};
+  }
   return j;
 }
 

@@ -290,12 +290,35 @@ Computed<sweep::NurbsCurve<double>> compute_trajectory(const Motion& m,
   return fitted_trajectory(m, point, opt, f, r);
 }
 
+/// Under --solid or --fail-on-self-intersection, the proof that the surfaces about to be
+/// written (and a solid's caps) do not meet themselves: --solid refuses anything not proven,
+/// --fail-on-self-intersection a crossing or a contact (docs/geometry.md).
+void prove_surfaces(const std::vector<sweep::NurbsSurface<double>>& surfaces,
+                    const sweep::Profile<double>& profile, const std::string& profile_name,
+                    const ExportOptions& opt, ExportResult& r) {
+  if (!opt.self_intersection_check || !(opt.solid || opt.fail_on_self_intersection)) return;
+  r.self_intersection_proof =
+      sweep::prove_no_self_intersection(surfaces, profile.closed, opt.solid);
+  const auto& p = *r.self_intersection_proof;
+  using S = sweep::SelfIntersectionProof::Status;
+  const bool meets = p.status == S::crossing || p.status == S::touching;
+  if (opt.solid ? !p.proven() : meets)
+    throw Error(Errc::numerical_failure,
+                std::string(opt.solid ? "--solid" : "--fail-on-self-intersection") +
+                    ": the sweep of " + profile_name + " " + p.describe() +
+                    (opt.solid ? ": a shell that is not proven free of self-intersection bounds "
+                                 "no solid"
+                               : ""));
+}
+
 /// The surfaces of either kind: exact (rational) or fitted (quaternion spline).
 Computed<std::vector<sweep::NurbsSurface<double>>> compute_surfaces(
     const Motion& m, const sweep::Profile<double>& profile, const std::string& profile_name,
     const ExportOptions& opt, Format f, ExportResult& r) {
-  if (m.is_rational()) return exact_surfaces(m, profile, profile_name, opt, f, r);
-  return fitted_surfaces(m, profile, profile_name, opt, f, r);
+  auto s = m.is_rational() ? exact_surfaces(m, profile, profile_name, opt, f, r)
+                           : fitted_surfaces(m, profile, profile_name, opt, f, r);
+  prove_surfaces(s.geometry, profile, profile_name, opt, r);
+  return s;
 }
 
 void require_one(const Geometry& g, const char* what) {

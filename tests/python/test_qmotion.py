@@ -136,6 +136,8 @@ def test_export_and_check_do_the_main_job(tmp_path):
         path = str(tmp_path / ("tube" + ext))
         r = qmotion.export(m, path, profile="circle:3", solid=True)
         assert r["volume"] > 0
+        proof = r["self_intersection_proof"]
+        assert proof["proven"] and proof["status"] == "none" and proof["patches"] > 0
         k = qmotion.check(path, m, profile="circle:3")
         assert k["relative_deviation"] <= 1e-11
         if ext == ".step":
@@ -316,6 +318,17 @@ def test_mesh_export_reports_its_deviation(tmp_path):
     assert r["mesh"]["closed"] and r["mesh"]["oriented"]
     with pytest.raises(ValueError, match="--deflection"):
         qmotion.export(m, str(tmp_path / "x.stl"), profile="circle:3", deflection=-1)
+
+
+def test_solid_refuses_what_the_proof_finds(tmp_path):
+    # The turns overlap by about 1e-5: finer than the mesh check, found by the proof.
+    m = qmotion.interpolate(data("self_intersection/coil_touching.json"))
+    r = qmotion.export(m, str(tmp_path / "tube.step"), profile="circle:3")
+    assert not r["self_intersecting"] and "self_intersection_proof" not in r
+    with pytest.raises(ArithmeticError, match="bounds no solid") as e:
+        qmotion.export(m, str(tmp_path / "solid.step"), profile="circle:3", solid=True)
+    assert "itself within" in str(e.value)
+    assert not (tmp_path / "solid.step").exists()
 
 
 def test_demo_does_the_main_job(tmp_path):

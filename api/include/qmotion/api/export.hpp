@@ -13,6 +13,7 @@
 #include <qmotion/sweep/factors.hpp>
 #include <qmotion/sweep/nurbs.hpp>
 #include <qmotion/sweep/profiles.hpp>
+#include <qmotion/sweep/self_intersection.hpp>
 #include <string>
 
 namespace qmotion {
@@ -31,9 +32,11 @@ struct ExportOptions {
   bool single_face = false;  ///< surfaces: one face per profile edge, not split at C0 knots
   bool solid = false;        ///< surfaces: closed planar profile, add caps, one solid
   /// Surfaces: tessellate and look for self-intersections (CGAL); the result says where.
+  /// With `solid` or `fail_on_self_intersection`, also the proof on the exact surfaces
+  /// (sweep::prove_no_self_intersection).
   bool self_intersection_check = true;
-  /// Surfaces: a self-intersecting sweep is refused (Errc::numerical_failure), as --solid
-  /// always does.
+  /// Surfaces: a sweep that crosses or touches itself is refused (Errc::numerical_failure);
+  /// --solid refuses any sweep not proven free of self-intersection.
   bool fail_on_self_intersection = false;
   /// Meshes: the largest deviation from the surfaces (absolute; 0: 1e-3 of the size), the
   /// mesher's angular deflection in degrees, ASCII STL/PLY instead of binary.
@@ -61,6 +64,9 @@ struct ExportResult {
   std::optional<double> volume;            ///< --solid: the independent swept volume
   /// Surfaces: what the self-intersection check found (absent when not run).
   std::optional<SelfIntersection> self_intersection;
+  /// Surfaces under --solid or --fail-on-self-intersection: the proof on the surfaces
+  /// written, their caps included for a solid.
+  std::optional<sweep::SelfIntersectionProof> self_intersection_proof;
   /// Meshes: what was written, with its measured deviation.
   std::optional<io::Mesh> mesh;
 };

@@ -1,0 +1,757 @@
+// <qmotion/sweep/self_intersection.hpp>: a proof that a sweep's exact surfaces (and a solid's
+// caps) do not meet themselves, by Bezier subdivision with no sampling (docs/geometry.md,
+// "Self-intersection").
+#pragma once
+#include <Eigen/Dense>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <optional>
+#include <qmotion/kernel/bspline.hpp>
+#include <qmotion/sweep/nurbs.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace qmotion::sweep {
+
+/// What the proof established. `none`: no two points of the surfaces (and caps) coincide,
+/// proven. `crossing` / `touching`: two parts of the surface came within `eps` of each other
+/// (crossing when their normals differ by more than 1e-3 rad there, touching when parallel).
+/// `singular`: the surface's derivatives are dependent at a point (a profile point that does
+/// not move, say: one profile point found at one place at two t), where injectivity cannot be
+/// shown. `undecided`: the budget ran out, or a
+/// weight is not positive.
+struct SelfIntersectionProof {
+  enum class Status { none, crossing, touching, singular, undecided };
+  Status status = Status::undecided;
+  /// Where (for any status but none): the parameter box of the first part, and of the second
+  /// for contacts; `cap` names an end cap (0: at the first t, 1: at the last) as the second.
+  struct Place {
+    double t0 = 0, t1 = 0;
+    std::size_t edge = 0;
+    double v0 = 0, v1 = 0;
+  };
+  Place first, second;
+  std::optional<int> cap;
+  std::string reason;       ///< for undecided
+  std::size_t patches = 0;  ///< rational Bezier patches of the surfaces
+  std::size_t pairs = 0;    ///< patch pairs examined (parts of patches, after subdivision)
+  std::size_t cells = 0;    ///< parts of patches made by subdivision
+  int depth = 0;            ///< deepest subdivision (halvings of a patch)
+  double eps = 0;           ///< the contact distance (1e-9 of the size)
+  bool proven() const { return status == Status::none; }
+
+  static const char* name(Status s) {
+    switch (s) {
+      case Status::none:
+        return "none";
+      case Status::crossing:
+        return "crossing";
+      case Status::touching:
+        return "touching";
+      case Status::singular:
+        return "singular";
+      case Status::undecided:
+        return "undecided";
+    }
+    return "undecided";
+  }
+  /// "t in [a, b] on profile edge e, v in [c, d]" for a place.
+  static std::string where(const Place& p) {
+    std::ostringstream os;
+    os.precision(6);
+    os << "t in [" << p.t0 << ", " << p.t1 << "], profile edge " << p.edge << " v in [" << p.v0
+       << ", " << p.v1 << "]";
+    return os.str();
+  }
+  /// What follows "the sweep " in a message.
+  std::string describe() const {
+    std::ostringstream os;
+    os.precision(3);
+    switch (status) {
+      case Status::none:
+        os << "is proven free of self-intersection (" << patches << " Bezier patches, " << pairs
+           << " pairs examined, subdivided to depth " << depth << ")";
+        break;
+      case Status::crossing:
+      case Status::touching:
+        os << (status == Status::crossing ? "crosses itself" : "touches itself") << " within "
+           << eps << ": " << where(first) << " meets "
+           << (cap ? std::string(*cap == 0 ? "the first end cap" : "the last end cap")
+                   : where(second));
+        break;
+      case Status::singular:
+        os << "is not proven free of self-intersection: the surface is singular near "
+           << where(first)
+           << " (a profile point standing still, or the surface's derivatives dependent there)";
+        break;
+      case Status::undecided:
+        os << "is not proven free of self-intersection: " << reason;
+        break;
+    }
+    return os.str();
+  }
+};
+
+namespace detail_si {
+
+using V3 = Eigen::Vector3d;
+using V4 = Eigen::Vector4d;
+
+/// A rational Bezier patch: homogeneous control points (w, w x, w y, w z), row-major,
+/// (p + 1) x (q + 1), i along u (t) and j along v.
+struct Net {
+  int p = 0, q = 0;
+  std::vector<V4> c;
+  V4& at(int i, int j) { return c[static_cast<std::size_t>(i * (q + 1) + j)]; }
+  const V4& at(int i, int j) const { return c[static_cast<std::size_t>(i * (q + 1) + j)]; }
+};
+
+/// The patch on [s, 1] (keep_right) or [0, s] along u (along_u) or v, by de Casteljau.
+inline Net restrict_side(const Net& n, double s, bool along_u, bool keep_right) {
+  Net out = n;
+  const int m = along_u ? n.p : n.q, other = along_u ? n.q : n.p;
+  std::vector<V4> row(static_cast<std::size_t>(m + 1));
+  for (int o = 0; o <= other; ++o) {
+    for (int k = 0; k <= m; ++k)
+      row[static_cast<std::size_t>(k)] = along_u ? n.at(k, o) : n.at(o, k);
+    std::vector<V4> left(row.size()), right(row.size());
+    for (int r = 0; r <= m; ++r) {
+      left[static_cast<std::size_t>(r)] = row[0];
+      right[static_cast<std::size_t>(m - r)] = row[static_cast<std::size_t>(m - r)];
+      for (int k = 0; k < m - r; ++k)
+        row[static_cast<std::size_t>(k)] =
+            (1 - s) * row[static_cast<std::size_t>(k)] + s * row[static_cast<std::size_t>(k + 1)];
+    }
+    const auto& keep = keep_right ? right : left;
+    for (int k = 0; k <= m; ++k)
+      (along_u ? out.at(k, o) : out.at(o, k)) = keep[static_cast<std::size_t>(k)];
+  }
+  return out;
+}
+
+/// The patch over [s0, s1] x [r0, r1] of its own [0, 1]^2.
+inline Net restrict_net(const Net& n, double s0, double s1, double r0, double r1) {
+  Net x = n;
+  if (s1 < 1) x = restrict_side(x, s1, true, false);
+  if (s0 > 0) x = restrict_side(x, s0 / s1, true, true);
+  if (r1 < 1) x = restrict_side(x, r1, false, false);
+  if (r0 > 0) x = restrict_side(x, r0 / r1, false, true);
+  return x;
+}
+
+inline double binom(int n, int k) {
+  double r = 1;
+  for (int i = 1; i <= k; ++i) r = r * (n - k + i) / i;
+  return r;
+}
+
+/// The numerators of the partial derivatives of x = P / w, (P_u w - P w_u) and
+/// (P_v w - P w_v), as Bezier control points of bidegree (2p, 2q) (both elevated to it), so
+/// that (x_u, x_v) = (N_u, N_v) / w^2 = sum_k B_k (Cu_k, Cv_k) / w^2 with the same Bernstein
+/// weights B_k for both.
+inline void hodographs(const Net& n, std::vector<V3>& cu, std::vector<V3>& cv) {
+  const int p = n.p, q = n.q, P = 2 * p, Q = 2 * q;
+  cu.assign(static_cast<std::size_t>((P + 1) * (Q + 1)), V3::Zero());
+  cv.assign(cu.size(), V3::Zero());
+  auto id = [Q](int i, int j) { return static_cast<std::size_t>(i * (Q + 1) + j); };
+  // N_u: (p - 1, q) x (p, q) -> (2p - 1, 2q), then elevated along u.
+  std::vector<V3> nu(static_cast<std::size_t>(P * (Q + 1)), V3::Zero());
+  for (int i = 0; i < p; ++i)
+    for (int j = 0; j <= q; ++j) {
+      const V4 d = p * (n.at(i + 1, j) - n.at(i, j));
+      for (int a = 0; a <= p; ++a)
+        for (int b = 0; b <= q; ++b) {
+          const V4& x = n.at(a, b);
+          const double c = binom(p - 1, i) * binom(p, a) / binom(P - 1, i + a) * binom(q, j) *
+                           binom(q, b) / binom(Q, j + b);
+          nu[static_cast<std::size_t>((i + a) * (Q + 1) + j + b)] +=
+              c * (d.tail<3>() * x(0) - x.tail<3>() * d(0));
+        }
+    }
+  for (int k = 0; k <= P; ++k)
+    for (int l = 0; l <= Q; ++l) {
+      const double f = static_cast<double>(k) / P;
+      V3 v = V3::Zero();
+      if (k > 0) v += f * nu[static_cast<std::size_t>((k - 1) * (Q + 1) + l)];
+      if (k < P) v += (1 - f) * nu[static_cast<std::size_t>(k * (Q + 1) + l)];
+      cu[id(k, l)] = v;
+    }
+  // N_v: (p, q - 1) x (p, q) -> (2p, 2q - 1), then elevated along v.
+  std::vector<V3> nv(static_cast<std::size_t>((P + 1) * Q), V3::Zero());
+  for (int i = 0; i <= p; ++i)
+    for (int j = 0; j < q; ++j) {
+      const V4 d = q * (n.at(i, j + 1) - n.at(i, j));
+      for (int a = 0; a <= p; ++a)
+        for (int b = 0; b <= q; ++b) {
+          const V4& x = n.at(a, b);
+          const double c = binom(p, i) * binom(p, a) / binom(P, i + a) * binom(q - 1, j) *
+                           binom(q, b) / binom(Q - 1, j + b);
+          nv[static_cast<std::size_t>((i + a) * Q + j + b)] +=
+              c * (d.tail<3>() * x(0) - x.tail<3>() * d(0));
+        }
+    }
+  for (int k = 0; k <= P; ++k)
+    for (int l = 0; l <= Q; ++l) {
+      const double f = static_cast<double>(l) / Q;
+      V3 v = V3::Zero();
+      if (l > 0) v += f * nv[static_cast<std::size_t>(k * Q + l - 1)];
+      if (l < Q) v += (1 - f) * nv[static_cast<std::size_t>(k * Q + l)];
+      cv[id(k, l)] = v;
+    }
+}
+
+/// The injectivity test. Over a convex parameter domain, x(a) - x(b) is the integral of
+/// J (a - b) along the segment, J = [x_u x_v] = sum_k B_k [Cu_k Cv_k] / w^2 (piecewise, for
+/// a continuous surface of several patches): a positive combination of the 3 x 2 matrices
+/// [Cu_k Cv_k]. With A = the pseudo-inverse of their mean, every A [Cu_k Cv_k] = s_k (I + E_k)
+/// with s_k > 0 and |E_k|_2 < 1 makes every positive combination s (I + E), |E|_2 < 1: never
+/// singular, so x(a) != x(b) for a != b. The pairs are added per piece by `add`, each
+/// scaled to the common parameters (dividing by the piece's extent in them).
+class Injectivity {
+ public:
+  void add(const Net& n, double du, double dv) {
+    hodographs(n, cu_, cv_);
+    for (std::size_t k = 0; k < cu_.size(); ++k) {
+      Eigen::Matrix<double, 3, 2> m;
+      m.col(0) = cu_[k] / du;
+      m.col(1) = cv_[k] / dv;
+      const double f = m.norm();
+      if (!(f > 0) || !std::isfinite(f)) {
+        degenerate_ = true;
+        continue;
+      }
+      js_.push_back(m / f);
+    }
+  }
+  bool injective() const {
+    if (degenerate_ || js_.empty()) return false;
+    Eigen::Matrix<double, 3, 2> mean = Eigen::Matrix<double, 3, 2>::Zero();
+    for (const auto& m : js_) mean += m;
+    mean /= static_cast<double>(js_.size());
+    const Eigen::Matrix2d gram = mean.transpose() * mean;
+    if (!(gram.determinant() > 1e-12 * gram.trace() * gram.trace())) return false;
+    const Eigen::Matrix<double, 2, 3> a = gram.inverse() * mean.transpose();
+    std::vector<Eigen::Matrix2d> gs;
+    double g12 = 0, g21 = 0;
+    for (const auto& m : js_) {
+      gs.push_back(a * m);
+      g12 = std::max(g12, std::abs(gs.back()(0, 1)));
+      g21 = std::max(g21, std::abs(gs.back()(1, 0)));
+    }
+    // Rescaling the second parameter by l (G -> diag(1, 1/l) G diag(1, l)) keeps the
+    // argument and balances the two off-diagonal terms.
+    const double l = g12 > 0 && g21 > 0 ? std::sqrt(g21 / g12) : 1.0;
+    for (auto g : gs) {
+      g(0, 1) *= l;
+      g(1, 0) /= l;
+      const double s = g.trace() / 2;
+      if (!(s > 0)) return false;
+      const Eigen::Matrix2d e = g / s - Eigen::Matrix2d::Identity();
+      // |E|_2^2 is the larger eigenvalue of E^T E (2 x 2, closed form).
+      const Eigen::Matrix2d ete = e.transpose() * e;
+      const double tr = ete.trace(), det = ete.determinant();
+      const double lmax = tr / 2 + std::sqrt(std::max(0.0, tr * tr / 4 - det));
+      if (!(lmax < 1 - 1e-6)) return false;  // the margin covers rounding
+    }
+    return true;
+  }
+
+ private:
+  std::vector<V3> cu_, cv_;
+  std::vector<Eigen::Matrix<double, 3, 2>> js_;
+  bool degenerate_ = false;
+};
+
+/// A patch of one face: its parameter box, its place in the common parameters (T = t, V the
+/// profile's edges laid end to end, each as long as its control polygon), its net.
+struct Piece {
+  std::size_t face = 0;
+  double t0 = 0, t1 = 0, v0 = 0, v1 = 0;
+  double T0 = 0, T1 = 0, V0 = 0, V1 = 0;
+  Net net;
+};
+
+/// A part of a piece: [s0, s1] x [r0, r1] of its [0, 1]^2, with its net and box.
+struct Cell {
+  std::size_t piece = 0;
+  double s0 = 0, s1 = 1, r0 = 0, r1 = 1;
+  double T0 = 0, T1 = 0, V0 = 0, V1 = 0;
+  Net net;
+  std::vector<V3> pts;  ///< Cartesian control points
+  V3 lo, hi;
+  double diam = 0;
+  int depth = 0;
+  std::array<std::ptrdiff_t, 4> kids{-1, -1, -1, -1};
+};
+
+/// An end cap: the plane n.x = c through the faces' boundary at the first or last t, and
+/// the box of that boundary's control points (which holds the planar region it bounds).
+struct Cap {
+  V3 n = V3::Zero();
+  double c = 0;
+  V3 lo, hi;
+  std::vector<V4> boundary;
+  bool planar = true;
+};
+
+class Prover {
+ public:
+  Prover(const std::vector<NurbsSurface<double>>& faces, bool closed, bool caps,
+         std::size_t max_pairs)
+      : closed_(closed), max_pairs_(max_pairs) {
+    make_pieces(faces);
+    if (out_.status == SelfIntersectionProof::Status::undecided && !out_.reason.empty()) return;
+    if (caps) make_caps(faces);
+  }
+
+  SelfIntersectionProof run() {
+    if (!out_.reason.empty()) return out_;
+    for (std::size_t i = 0; i < pieces_.size(); ++i) {
+      Cell c;
+      c.piece = i;
+      c.net = pieces_[i].net;
+      finish_cell(c);
+      cells_.push_back(std::move(c));
+    }
+    // Caps first: they can fail without subdivision (two caps that may meet).
+    if (caps_.size() == 2 && !caps_apart()) return undecided("the end caps may meet");
+    for (std::size_t i = 0; i < cells_.size(); ++i) {
+      stack_.push_back({i, i, -1});
+      for (std::size_t j = i + 1; j < cells_.size(); ++j) stack_.push_back({i, j, -1});
+      for (int k = 0; k < static_cast<int>(caps_.size()); ++k) stack_.push_back({i, i, k});
+    }
+    while (!stack_.empty()) {
+      const Job job = stack_.back();
+      stack_.pop_back();
+      if (++out_.pairs > max_pairs_)
+        return undecided("the budget of " + std::to_string(max_pairs_) + " pairs ran out");
+      const bool done = job.cap >= 0     ? cell_cap(job.a, job.cap)
+                        : job.a == job.b ? self(job.a)
+                                         : pair(job.a, job.b);
+      if (done && out_.status != SelfIntersectionProof::Status::undecided) break;
+    }
+    if (out_.status == SelfIntersectionProof::Status::undecided && out_.reason.empty())
+      out_.status = SelfIntersectionProof::Status::none;
+    out_.cells = cells_.size();
+    return out_;
+  }
+
+ private:
+  struct Job {
+    std::size_t a, b;
+    int cap;  ///< >= 0: cell a against that cap
+  };
+
+  bool closed_;
+  std::size_t max_pairs_;
+  std::vector<Piece> pieces_;
+  std::vector<Cell> cells_;
+  std::vector<Cap> caps_;
+  std::vector<Job> stack_;
+  std::vector<double> edge_v0_;  ///< V where each face starts
+  double vtotal_ = 0, tmin_ = 0, tmax_ = 0, scale_ = 0;
+  SelfIntersectionProof out_;
+
+  SelfIntersectionProof undecided(const std::string& why) {
+    out_.status = SelfIntersectionProof::Status::undecided;
+    out_.reason = why;
+    out_.cells = cells_.size();
+    return out_;
+  }
+
+  void make_pieces(const std::vector<NurbsSurface<double>>& faces) {
+    V3 lo = V3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    double V = 0;
+    tmin_ = std::numeric_limits<double>::infinity();
+    tmax_ = -tmin_;
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+      const auto& s = faces[f];
+      if (s.degree_u < 1 || s.degree_v < 1) {
+        out_.reason = "a face has degree 0";
+        return;
+      }
+      double len = 0;  // the control polygon's length along v, at the middle row
+      const auto& mid = s.points[s.points.size() / 2];
+      for (std::size_t j = 0; j + 1 < mid.size(); ++j) len += (mid[j + 1] - mid[j]).norm();
+      if (!(len > 0)) len = 1;
+      edge_v0_.push_back(V);
+      // Columns along u to Bezier pieces, then each piece's rows along v.
+      std::vector<std::vector<kernel::Bernstein<V4>>> cols;  // [j][u-span]
+      for (std::size_t j = 0; j < s.points.front().size(); ++j) {
+        std::vector<V4> h;
+        for (std::size_t i = 0; i < s.points.size(); ++i) {
+          const double w = s.weights[i][j];
+          if (!(w > 0)) {
+            out_.reason = "a weight is not positive";
+            return;
+          }
+          h.emplace_back(w, w * s.points[i][j](0), w * s.points[i][j](1), w * s.points[i][j](2));
+          lo = lo.cwiseMin(s.points[i][j]);
+          hi = hi.cwiseMax(s.points[i][j]);
+        }
+        cols.push_back(
+            kernel::bezier_pieces(kernel::BSpline<V4>::make(s.degree_u, s.knots_u, std::move(h))));
+      }
+      const double va = s.knots_v.front(), vb = s.knots_v.back();
+      tmin_ = std::min(tmin_, s.knots_u.front());
+      tmax_ = std::max(tmax_, s.knots_u.back());
+      for (std::size_t k = 0; k < cols.front().size(); ++k) {
+        const auto& ref = cols.front()[k];
+        std::vector<std::vector<kernel::Bernstein<V4>>> rows;  // [i][v-span]
+        for (int i = 0; i <= s.degree_u; ++i) {
+          std::vector<V4> h;
+          for (const auto& col : cols) h.push_back(col[k][i]);
+          rows.push_back(kernel::bezier_pieces(
+              kernel::BSpline<V4>::make(s.degree_v, s.knots_v, std::move(h))));
+        }
+        for (std::size_t l = 0; l < rows.front().size(); ++l) {
+          Piece pc;
+          pc.face = f;
+          pc.t0 = ref.a();
+          pc.t1 = ref.b();
+          pc.v0 = rows.front()[l].a();
+          pc.v1 = rows.front()[l].b();
+          pc.T0 = pc.t0;
+          pc.T1 = pc.t1;
+          pc.V0 = V + len * (pc.v0 - va) / (vb - va);
+          pc.V1 = V + len * (pc.v1 - va) / (vb - va);
+          pc.net.p = s.degree_u;
+          pc.net.q = s.degree_v;
+          for (int i = 0; i <= s.degree_u; ++i)
+            for (int j = 0; j <= s.degree_v; ++j)
+              pc.net.c.push_back(rows[static_cast<std::size_t>(i)][l][j]);
+          pieces_.push_back(std::move(pc));
+        }
+      }
+      V += len;
+    }
+    vtotal_ = V;
+    scale_ = (hi - lo).norm();
+    out_.patches = pieces_.size();
+    out_.eps = 1e-9 * scale_;
+    if (pieces_.empty()) out_.reason = "no surface";
+  }
+
+  /// The cap at the first (k = 0) or last t: the faces' boundary rows there.
+  void make_caps(const std::vector<NurbsSurface<double>>& faces) {
+    for (int k = 0; k < 2; ++k) {
+      Cap cap;
+      std::vector<V3> pts;
+      for (const auto& s : faces) {
+        const std::size_t i = k == 0 ? 0 : s.points.size() - 1;
+        for (std::size_t j = 0; j < s.points[i].size(); ++j) {
+          pts.push_back(s.points[i][j]);
+          const double w = s.weights[i][j];
+          cap.boundary.emplace_back(w, w * pts.back()(0), w * pts.back()(1), w * pts.back()(2));
+        }
+      }
+      // Newell's normal of the closed control polygon.
+      for (std::size_t a = 0; a < pts.size(); ++a) {
+        const V3& x = pts[a];
+        const V3& y = pts[(a + 1) % pts.size()];
+        cap.n += V3((x(1) - y(1)) * (x(2) + y(2)), (x(2) - y(2)) * (x(0) + y(0)),
+                    (x(0) - y(0)) * (x(1) + y(1)));
+      }
+      if (!(cap.n.norm() > 0)) {
+        out_.reason = "an end cap has no plane";
+        return;
+      }
+      cap.n.normalize();
+      V3 centroid = V3::Zero();
+      cap.lo = cap.hi = pts.front();
+      for (const auto& x : pts) {
+        centroid += x;
+        cap.lo = cap.lo.cwiseMin(x);
+        cap.hi = cap.hi.cwiseMax(x);
+      }
+      cap.c = cap.n.dot(centroid / static_cast<double>(pts.size()));
+      for (const auto& x : pts)
+        if (std::abs(cap.n.dot(x) - cap.c) > 1e-9 * scale_) {
+          out_.reason = "an end cap's boundary is not planar";
+          return;
+        }
+      caps_.push_back(std::move(cap));
+    }
+  }
+
+  void finish_cell(Cell& c) {
+    const Piece& pc = pieces_[c.piece];
+    c.T0 = pc.T0 + c.s0 * (pc.T1 - pc.T0);
+    c.T1 = pc.T0 + c.s1 * (pc.T1 - pc.T0);
+    c.V0 = pc.V0 + c.r0 * (pc.V1 - pc.V0);
+    c.V1 = pc.V0 + c.r1 * (pc.V1 - pc.V0);
+    c.pts.clear();
+    for (const auto& h : c.net.c) c.pts.push_back(h.tail<3>() / h(0));
+    c.lo = c.hi = c.pts.front();
+    for (const auto& x : c.pts) {
+      c.lo = c.lo.cwiseMin(x);
+      c.hi = c.hi.cwiseMax(x);
+    }
+    c.diam = (c.hi - c.lo).norm();
+    out_.depth = std::max(out_.depth, c.depth);
+  }
+
+  /// The four quarters of cell i, made once.
+  std::array<std::size_t, 4> split(std::size_t i) {
+    if (cells_[i].kids[0] < 0) {
+      for (int k = 0; k < 4; ++k) {
+        const Cell& c = cells_[i];
+        Cell d;
+        d.piece = c.piece;
+        d.depth = c.depth + 1;
+        const double sm = (c.s0 + c.s1) / 2, rm = (c.r0 + c.r1) / 2;
+        const bool right = k & 1, up = k & 2;
+        d.s0 = right ? sm : c.s0;
+        d.s1 = right ? c.s1 : sm;
+        d.r0 = up ? rm : c.r0;
+        d.r1 = up ? c.r1 : rm;
+        d.net = restrict_side(c.net, 0.5, true, right);
+        d.net = restrict_side(d.net, 0.5, false, up);
+        finish_cell(d);
+        cells_.push_back(std::move(d));
+        cells_[i].kids[static_cast<std::size_t>(k)] =
+            static_cast<std::ptrdiff_t>(cells_.size() - 1);
+      }
+    }
+    std::array<std::size_t, 4> k{};
+    for (std::size_t j = 0; j < 4; ++j) k[j] = static_cast<std::size_t>(cells_[i].kids[j]);
+    return k;
+  }
+
+  SelfIntersectionProof::Place place(const Cell& c) const {
+    const Piece& p = pieces_[c.piece];
+    return {p.t0 + c.s0 * (p.t1 - p.t0), p.t0 + c.s1 * (p.t1 - p.t0), p.face,
+            p.v0 + c.r0 * (p.v1 - p.v0), p.v0 + c.r1 * (p.v1 - p.v0)};
+  }
+
+  bool self(std::size_t i) {
+    Injectivity inj;
+    {
+      const Cell& c = cells_[i];
+      inj.add(c.net, c.T1 - c.T0, c.V1 - c.V0);
+    }
+    if (inj.injective()) return false;
+    if (cells_[i].diam < out_.eps) return singular(cells_[i]);
+    const auto k = split(i);
+    for (std::size_t a = 0; a < 4; ++a) {
+      stack_.push_back({k[a], k[a], -1});
+      for (std::size_t b = a + 1; b < 4; ++b) stack_.push_back({k[a], k[b], -1});
+    }
+    return false;
+  }
+
+  bool singular(const Cell& c) {
+    out_.status = SelfIntersectionProof::Status::singular;
+    out_.first = place(c);
+    return true;
+  }
+
+  /// The shift of V (0, or +-vtotal_ across a closed profile's seam) that makes the
+  /// parameter boxes of a and b touch, if any.
+  std::optional<double> touching_shift(const Cell& a, const Cell& b) const {
+    const double tol = 1e-12 * (tmax_ - tmin_ + vtotal_);
+    if (a.T0 > b.T1 + tol || b.T0 > a.T1 + tol) return std::nullopt;
+    for (const double sh : {0.0, vtotal_, -vtotal_}) {
+      if (sh != 0 && !closed_) continue;
+      if (!(a.V0 > b.V1 + sh + tol || b.V0 + sh > a.V1 + tol)) return sh;
+    }
+    return std::nullopt;
+  }
+
+  /// Injectivity over the parameter box [T0, T1] x [V0, V1] (V unwrapped): every piece part
+  /// inside it, each scaled to the common parameters.
+  bool injective_over(double T0, double T1, double V0, double V1) const {
+    Injectivity inj;
+    const double tol = 1e-12 * (tmax_ - tmin_ + vtotal_);
+    for (const auto& p : pieces_)
+      for (const double sh : {0.0, vtotal_, -vtotal_}) {
+        if (sh != 0 && !closed_) continue;
+        const double a0 = std::max(T0, p.T0), a1 = std::min(T1, p.T1);
+        const double b0 = std::max(V0, p.V0 + sh), b1 = std::min(V1, p.V1 + sh);
+        if (a1 - a0 <= tol || b1 - b0 <= tol) continue;
+        const double s0 = (a0 - p.T0) / (p.T1 - p.T0), s1 = (a1 - p.T0) / (p.T1 - p.T0);
+        const double r0 = (b0 - p.V0 - sh) / (p.V1 - p.V0), r1 = (b1 - p.V0 - sh) / (p.V1 - p.V0);
+        inj.add(restrict_net(p.net, std::max(0.0, s0), std::min(1.0, s1), std::max(0.0, r0),
+                             std::min(1.0, r1)),
+                a1 - a0, b1 - b0);
+      }
+    return inj.injective();
+  }
+
+  /// Separated along one of a few directions (axes, centres, normals), with a margin for
+  /// rounding.
+  bool apart(const Cell& a, const Cell& b) const {
+    const double gap = 1e-12 * scale_;
+    for (int k = 0; k < 3; ++k)
+      if (a.hi(k) + gap < b.lo(k) || b.hi(k) + gap < a.lo(k)) return true;
+    auto normal = [](const Cell& c) {
+      const int p = c.net.p, q = c.net.q;
+      auto x = [&](int i, int j) { return c.pts[static_cast<std::size_t>(i * (q + 1) + j)]; };
+      return V3((x(p, q) - x(0, 0)).cross(x(p, 0) - x(0, q)));
+    };
+    const V3 ca = (a.lo + a.hi) / 2, cb = (b.lo + b.hi) / 2;
+    for (const V3& d : {V3(cb - ca), normal(a), normal(b)}) {
+      if (!(d.norm() > 0)) continue;
+      const V3 u = d.normalized();
+      double amin = std::numeric_limits<double>::infinity(), amax = -amin, bmin = amin,
+             bmax = -amin;
+      for (const auto& x : a.pts) {
+        amin = std::min(amin, u.dot(x));
+        amax = std::max(amax, u.dot(x));
+      }
+      for (const auto& x : b.pts) {
+        bmin = std::min(bmin, u.dot(x));
+        bmax = std::max(bmax, u.dot(x));
+      }
+      if (amax + gap < bmin || bmax + gap < amin) return true;
+    }
+    return false;
+  }
+
+  bool pair(std::size_t i, std::size_t j) {
+    if (apart(cells_[i], cells_[j])) return false;
+    const auto sh = touching_shift(cells_[i], cells_[j]);
+    if (sh) {
+      const Cell& a = cells_[i];
+      const Cell& b = cells_[j];
+      if (injective_over(std::min(a.T0, b.T0), std::max(a.T1, b.T1), std::min(a.V0, b.V0 + *sh),
+                         std::max(a.V1, b.V1 + *sh)))
+        return false;
+    }
+    const Cell& a = cells_[i];
+    const Cell& b = cells_[j];
+    if (a.diam < out_.eps && b.diam < out_.eps) {
+      if (sh) return singular(a.T1 - a.T0 >= b.T1 - b.T0 ? a : b);
+      contact(a, b);
+      return true;
+    }
+    const bool split_a = a.diam >= b.diam;
+    const auto k = split(split_a ? i : j);
+    for (std::size_t c : k) stack_.push_back(split_a ? Job{c, j, -1} : Job{i, c, -1});
+    return false;
+  }
+
+  static V3 mean_normal(const Cell& c) {
+    const int p = c.net.p, q = c.net.q;
+    auto x = [&](int i, int j) { return c.pts[static_cast<std::size_t>(i * (q + 1) + j)]; };
+    return (x(p, 0) - x(0, 0) + x(p, q) - x(0, q)).cross(x(0, q) - x(0, 0) + x(p, q) - x(p, 0));
+  }
+
+  /// Two tiny parts that meet. The same profile point (their V overlap, within a part's
+  /// size) at two t is a still point (the surface is singular there), not a contact.
+  void contact(const Cell& a, const Cell& b) {
+    const double dv = std::max(a.V1 - a.V0, b.V1 - b.V0);
+    if (pieces_[a.piece].face == pieces_[b.piece].face && a.V0 <= b.V1 + dv && b.V0 <= a.V1 + dv) {
+      singular(a);
+      out_.second = place(b);
+      return;
+    }
+    const V3 na = mean_normal(a), nb = mean_normal(b);
+    const double s = na.cross(nb).norm() / std::max(1e-300, na.norm() * nb.norm());
+    out_.status = s > 1e-3 ? SelfIntersectionProof::Status::crossing
+                           : SelfIntersectionProof::Status::touching;
+    out_.first = place(a);
+    out_.second = place(b);
+  }
+
+  /// Cell i against cap k: off the cap's plane (strictly, by the signs of its homogeneous
+  /// distances), or leaving it from the boundary it shares with the cap (distances zero on
+  /// that row, of one strict sign on all others), or outside the cap's box.
+  bool cell_cap(std::size_t i, int k) {
+    const Cap& cap = caps_[static_cast<std::size_t>(k)];
+    const Cell& c = cells_[i];
+    const double gap = 1e-12 * scale_;
+    const int p = c.net.p, q = c.net.q;
+    const Piece& pc = pieces_[c.piece];
+    const bool on_end = k == 0 ? (c.s0 == 0 && pc.t0 == tmin_) : (c.s1 == 1 && pc.t1 == tmax_);
+    int sign = 0;
+    bool strict = true, ends_on_plane = on_end;
+    for (int a = 0; a <= p; ++a)
+      for (int b = 0; b <= q; ++b) {
+        const V4& h = c.net.at(a, b);
+        const double d = (cap.n.dot(h.tail<3>()) - cap.c * h(0)) / h(0);
+        const bool boundary_row = on_end && a == (k == 0 ? 0 : p);
+        if (boundary_row) {
+          if (std::abs(d) > 1e-9 * scale_) ends_on_plane = false;
+          continue;
+        }
+        if (std::abs(d) <= gap) {
+          strict = false;
+          continue;
+        }
+        const int s = d > 0 ? 1 : -1;
+        if (sign == 0) sign = s;
+        if (s != sign) strict = false;
+      }
+    if (strict && (!on_end || ends_on_plane)) return false;
+    bool outside = false;
+    for (int a = 0; a < 3; ++a)
+      if (c.hi(a) + gap < cap.lo(a) || cap.hi(a) + gap < c.lo(a)) outside = true;
+    if (outside) return false;
+    if (c.diam < out_.eps) {
+      out_.status = SelfIntersectionProof::Status::touching;
+      out_.first = place(c);
+      out_.cap = k;
+      const V3 nc = mean_normal(c);
+      if (nc.cross(cap.n).norm() > 1e-3 * nc.norm())
+        out_.status = SelfIntersectionProof::Status::crossing;
+      return true;
+    }
+    for (std::size_t d : split(i)) stack_.push_back({d, d, k});
+    return false;
+  }
+
+  /// The caps' boxes are apart, or one cap's boundary control points lie strictly on one
+  /// side of the other's plane (its region, in their convex hull, then too).
+  bool caps_apart() const {
+    const Cap& a = caps_[0];
+    const Cap& b = caps_[1];
+    const double gap = 1e-12 * scale_;
+    for (int k = 0; k < 3; ++k)
+      if (a.hi(k) + gap < b.lo(k) || b.hi(k) + gap < a.lo(k)) return true;
+    auto one_side = [gap](const Cap& plane, const Cap& other) {
+      int sign = 0;
+      for (const auto& h : other.boundary) {
+        const double d = (plane.n.dot(h.tail<3>()) - plane.c * h(0)) / h(0);
+        if (std::abs(d) <= gap) return false;
+        const int s = d > 0 ? 1 : -1;
+        if (sign == 0) sign = s;
+        if (s != sign) return false;
+      }
+      return true;
+    };
+    return one_side(a, b) || one_side(b, a);
+  }
+};
+
+}  // namespace detail_si
+
+/// Proves that the faces (one per profile edge, in order, sharing the boundaries where
+/// consecutive edges meet, the last and first too when `closed_profile`) do not meet
+/// themselves or each other anywhere else, and with `caps` that the two planar end caps
+/// bounded by the faces' boundaries at the first and last t do not meet them either.
+///
+/// The faces are cut into rational Bezier patches (positive weights) and examined in pairs:
+/// - two parts apart along an axis, the line of their centres or a normal (their control
+///   points' projections, a convex hull bound) cannot meet;
+/// - a part, or two neighbouring parts (their parameter boxes touch, across patches,
+///   edges and a closed profile's seam) whose enclosing parameter box passes the
+///   injectivity test (detail_si::Injectivity, a bound on the Jacobians' Bezier control
+///   points) map no two parameters to one point;
+/// - a part against a cap: its homogeneous distances to the cap's plane of one strict sign,
+///   except on the boundary row it shares with the cap, or its box apart from the cap's;
+/// - anything else is halved in both parameters, until the parts are smaller than 1e-9 of
+///   the size (a contact, or a singular point) or `max_pairs` pairs were examined.
+/// No sampling: every "apart" comes from convex hulls, with a 1e-12 of the size margin for
+/// rounding.
+inline SelfIntersectionProof prove_no_self_intersection(
+    const std::vector<NurbsSurface<double>>& faces, bool closed_profile, bool caps,
+    std::size_t max_pairs = 2'000'000) {
+  return detail_si::Prover(faces, closed_profile, caps, max_pairs).run();
+}
+
+}  // namespace qmotion::sweep
