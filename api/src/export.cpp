@@ -62,8 +62,9 @@ void check_max_degree(const ExportOptions& opt, Format f) {
   if (opt.max_degree < 1)
     throw Error(Errc::invalid_input, "--max-degree " + std::to_string(opt.max_degree) +
                                          ": expected a degree of at least 1");
+  if (f != Format::step && f != Format::iges) return;  // OpenCASCADE loads only for them
   const int limit = occt_max_degree();
-  if ((f == Format::step || f == Format::iges) && opt.max_degree > limit)
+  if (opt.max_degree > limit)
     throw Error(Errc::invalid_input, "--max-degree " + std::to_string(opt.max_degree) +
                                          ": STEP and IGES (OpenCASCADE) store degrees up to " +
                                          std::to_string(limit));
@@ -71,8 +72,9 @@ void check_max_degree(const ExportOptions& opt, Format f) {
 
 /// Refuses degrees above what the target stores, unless an approximation was asked for.
 void check_degree(int degree, const std::string& what, Format f, const ExportOptions& opt) {
+  if (f != Format::step && f != Format::iges) return;  // OpenCASCADE loads only for them
   const int limit = occt_max_degree();
-  if ((f == Format::step || f == Format::iges) && degree > limit && opt.max_degree < 0)
+  if (degree > limit && opt.max_degree < 0)
     throw Error(Errc::numerical_failure,
                 what + " has degree " + std::to_string(degree) + ", above the " +
                     std::to_string(limit) +

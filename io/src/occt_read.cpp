@@ -82,7 +82,7 @@
 
 #include "isolated.hpp"
 #include "occt_convert.hpp"
-#include "occt_unchecked.hpp"
+#include "occt_plugin.hpp"
 
 namespace qmotion::io {
 using namespace detail;  // NOLINT: this module's own conversions
@@ -534,6 +534,8 @@ CadGeometry read_cad_isolated(const std::string& path, bool want_surface, const 
 
 }  // namespace
 
+namespace plugin {
+
 CadGeometry read_cad(const std::string& path, bool want_surface, const std::string& units) {
   return read_cad_isolated(path, want_surface, units, true);
 }
@@ -577,4 +579,5 @@ std::vector<std::array<Eigen::Vector3d, 3>> read_stl(const std::string& path) {
   return out;
 }
 
+}  // namespace plugin
 }  // namespace qmotion::io

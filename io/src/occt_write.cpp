@@ -82,7 +82,7 @@
 
 #include "isolated.hpp"
 #include "occt_convert.hpp"
-#include "occt_unchecked.hpp"
+#include "occt_plugin.hpp"
 
 namespace qmotion::io {
 using namespace detail;  // NOLINT: this module's own conversions
@@ -256,29 +256,9 @@ void guarded(const std::string& path, F&& f) {
 
 }  // namespace
 
+namespace plugin {
+
 int occt_max_degree() { return Geom_BSplineCurve::MaxDegree(); }
-
-void knots_to_distinct(const std::vector<double>& full, std::vector<double>& distinct,
-                       std::vector<int>& mults) {
-  distinct.clear();
-  mults.clear();
-  for (double k : full) {
-    if (!distinct.empty() && distinct.back() == k) {
-      ++mults.back();
-    } else {
-      distinct.push_back(k);
-      mults.push_back(1);
-    }
-  }
-}
-
-std::vector<double> knots_from_distinct(const std::vector<double>& distinct,
-                                        const std::vector<int>& mults) {
-  std::vector<double> full;
-  for (std::size_t i = 0; i < distinct.size(); ++i)
-    full.insert(full.end(), static_cast<std::size_t>(mults[i]), distinct[i]);
-  return full;
-}
 
 void write_step(const std::string& path, const sweep::NurbsSurface<double>& s,
                 const ExportInfo& info) {
@@ -403,4 +383,5 @@ void write_step(const std::string& path, const std::vector<sweep::NurbsCurve<dou
   guarded(path, [&] { write_step_shape(path, make_wire(wire, path, "curves"), info); });
 }
 
+}  // namespace plugin
 }  // namespace qmotion::io
