@@ -6,13 +6,17 @@
 #include <filesystem>
 #include <fstream>
 #include <qmotion/api/evaluate.hpp>
+#include <qmotion/api/export.hpp>
+#include <qmotion/api/interpolate.hpp>
 #include <qmotion/io/json_number.hpp>
 #include <qmotion/io/motion_json.hpp>
 #include <qmotion/io/occt.hpp>
 #include <qmotion/io/poses.hpp>
+#include <qmotion/io/profiles.hpp>
 #include <qmotion/io/qspline_file.hpp>
 #include <qmotion/kernel/interpolation.hpp>
 #include <qmotion/kernel/parametrization.hpp>
+#include <qmotion/sweep/self_intersection.hpp>
 #include <qmotion/sweep/surface.hpp>
 
 // OpenCASCADE after CGAL: its `Handle` macro breaks CGAL headers included after it.
@@ -170,6 +174,50 @@ void BM_Peer_GridOcctD0(benchmark::State& st) {
               std::to_string(g.s.degree_v));
 }
 BENCHMARK(BM_Peer_GridOcctD0)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+/// The exact surfaces of a tube of radius 3 along a coil of radius 10 and pitch 20 with
+/// st.range(0) turns (12 poses a turn, as tests/data/self_intersection/coil.py makes them).
+std::vector<sweep::NurbsSurface<double>> coil_tube(int turns) {
+  const fs::path path =
+      fs::temp_directory_path() / ("qmotion_bench_coil_" + std::to_string(turns) + ".json");
+  {
+    std::ofstream f(path);
+    f.precision(17);
+    f << "{\"units\":\"mm\",\"poses\":[";
+    const int n = 12 * turns + 1;
+    for (int k = 0; k < n; ++k) {
+      const double th = 2 * M_PI * k / 12, pitch = 20, r = 10;
+      Eigen::Vector3d t(-r * std::sin(th), r * std::cos(th), pitch / (2 * M_PI));
+      t.normalize();
+      const Eigen::Vector3d x(-std::cos(th), -std::sin(th), 0), y = t.cross(x);
+      f << (k ? "," : "") << "{\"t\":" << static_cast<double>(k) / (n - 1) << ",\"position\":["
+        << r * std::cos(th) << "," << r * std::sin(th) << "," << pitch * th / (2 * M_PI)
+        << "],\"rotation\":{\"matrix\":[";
+      for (int i = 0; i < 3; ++i)
+        f << (i ? "," : "") << "[" << x(i) << "," << y(i) << "," << t(i) << "]";
+      f << "]}}";
+    }
+    f << "]}";
+  }
+  const auto m = qmotion::interpolate(io::read_poses(path.string()), {}).motion;
+  fs::remove(path);
+  ExportOptions opt;
+  opt.self_intersection_check = false;
+  return qmotion::sweep_nurbs(m, io::read_profile("circle:3"), opt);
+}
+
+/// The proof that the capped tube is free of self-intersection (what --solid runs), as the
+/// coil grows: its growth with the number of patches.
+void BM_ProveTubeFree(benchmark::State& st) {
+  const auto faces = coil_tube(static_cast<int>(st.range(0)));
+  sweep::SelfIntersectionProof p;
+  for (auto _ : st) p = sweep::prove_no_self_intersection(faces, true, true);
+  if (!p.proven()) st.SkipWithError(p.describe().c_str());
+  st.counters["patches"] = static_cast<double>(p.patches);
+  st.counters["pairs"] = static_cast<double>(p.pairs);
+  st.counters["depth"] = p.depth;
+}
+BENCHMARK(BM_ProveTubeFree)->Arg(2)->Arg(8)->Arg(32)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
