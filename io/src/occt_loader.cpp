@@ -17,12 +17,10 @@ constexpr const char* kPluginName = "libqmotion_occt.so";
 
 /// libqmotion_occt beside this library (its directory from dladdr), else by the loader's
 /// search. Errc::export_failed, with the loader's message, when it cannot be loaded.
-const plugin::Table& table() {
-  static const plugin::Table* loaded = nullptr;
-  if (loaded) return *loaded;
+const plugin::Table* load_table() {
   std::string here_dir;
   Dl_info info{};
-  if (dladdr(reinterpret_cast<void*>(&table), &info) && info.dli_fname)
+  if (dladdr(reinterpret_cast<void*>(&load_table), &info) && info.dli_fname)
     here_dir = std::filesystem::path(info.dli_fname).parent_path().string();
   void* handle = nullptr;
   std::string why;
@@ -46,7 +44,13 @@ const plugin::Table& table() {
     throw Error(Errc::export_failed, std::string(kPluginName) +
                                          " is from another build of qmotion (its table does "
                                          "not match); reinstall qmotion");
-  loaded = t;
+  return t;
+}
+
+/// The table, loaded once: a static's initialisation is thread-safe, and one that throws is
+/// tried again at the next call.
+const plugin::Table& table() {
+  static const plugin::Table* const loaded = load_table();
   return *loaded;
 }
 

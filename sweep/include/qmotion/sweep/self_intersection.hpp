@@ -10,6 +10,7 @@
 #include <limits>
 #include <optional>
 #include <qmotion/kernel/bspline.hpp>
+#include <qmotion/sweep/bezier_patch.hpp>
 #include <qmotion/sweep/nurbs.hpp>
 #include <sstream>
 #include <string>
@@ -98,180 +99,20 @@ struct SelfIntersectionProof {
 
 namespace detail_si {
 
-using V3 = Eigen::Vector3d;
-using V4 = Eigen::Vector4d;
-
-/// A rational Bezier patch: homogeneous control points (w, w x, w y, w z), row-major,
-/// (p + 1) x (q + 1), i along u (t) and j along v.
-struct Net {
-  int p = 0, q = 0;
-  std::vector<V4> c;
-  V4& at(int i, int j) { return c[static_cast<std::size_t>(i * (q + 1) + j)]; }
-  const V4& at(int i, int j) const { return c[static_cast<std::size_t>(i * (q + 1) + j)]; }
-};
-
-/// The patch on [s, 1] (keep_right) or [0, s] along u (along_u) or v, by de Casteljau.
-inline Net restrict_side(const Net& n, double s, bool along_u, bool keep_right) {
-  Net out = n;
-  const int m = along_u ? n.p : n.q, other = along_u ? n.q : n.p;
-  std::vector<V4> row(static_cast<std::size_t>(m + 1));
-  for (int o = 0; o <= other; ++o) {
-    for (int k = 0; k <= m; ++k)
-      row[static_cast<std::size_t>(k)] = along_u ? n.at(k, o) : n.at(o, k);
-    std::vector<V4> left(row.size()), right(row.size());
-    for (int r = 0; r <= m; ++r) {
-      left[static_cast<std::size_t>(r)] = row[0];
-      right[static_cast<std::size_t>(m - r)] = row[static_cast<std::size_t>(m - r)];
-      for (int k = 0; k < m - r; ++k)
-        row[static_cast<std::size_t>(k)] =
-            (1 - s) * row[static_cast<std::size_t>(k)] + s * row[static_cast<std::size_t>(k + 1)];
-    }
-    const auto& keep = keep_right ? right : left;
-    for (int k = 0; k <= m; ++k)
-      (along_u ? out.at(k, o) : out.at(o, k)) = keep[static_cast<std::size_t>(k)];
-  }
-  return out;
-}
-
-/// The patch over [s0, s1] x [r0, r1] of its own [0, 1]^2.
-inline Net restrict_net(const Net& n, double s0, double s1, double r0, double r1) {
-  Net x = n;
-  if (s1 < 1) x = restrict_side(x, s1, true, false);
-  if (s0 > 0) x = restrict_side(x, s0 / s1, true, true);
-  if (r1 < 1) x = restrict_side(x, r1, false, false);
-  if (r0 > 0) x = restrict_side(x, r0 / r1, false, true);
-  return x;
-}
-
-inline double binom(int n, int k) {
-  double r = 1;
-  for (int i = 1; i <= k; ++i) r = r * (n - k + i) / i;
-  return r;
-}
-
-/// The numerators of the partial derivatives of x = P / w, (P_u w - P w_u) and
-/// (P_v w - P w_v), as Bezier control points of bidegree (2p, 2q) (both elevated to it), so
-/// that (x_u, x_v) = (N_u, N_v) / w^2 = sum_k B_k (Cu_k, Cv_k) / w^2 with the same Bernstein
-/// weights B_k for both.
-inline void hodographs(const Net& n, std::vector<V3>& cu, std::vector<V3>& cv) {
-  const int p = n.p, q = n.q, P = 2 * p, Q = 2 * q;
-  cu.assign(static_cast<std::size_t>((P + 1) * (Q + 1)), V3::Zero());
-  cv.assign(cu.size(), V3::Zero());
-  auto id = [Q](int i, int j) { return static_cast<std::size_t>(i * (Q + 1) + j); };
-  // N_u: (p - 1, q) x (p, q) -> (2p - 1, 2q), then elevated along u.
-  std::vector<V3> nu(static_cast<std::size_t>(P * (Q + 1)), V3::Zero());
-  for (int i = 0; i < p; ++i)
-    for (int j = 0; j <= q; ++j) {
-      const V4 d = p * (n.at(i + 1, j) - n.at(i, j));
-      for (int a = 0; a <= p; ++a)
-        for (int b = 0; b <= q; ++b) {
-          const V4& x = n.at(a, b);
-          const double c = binom(p - 1, i) * binom(p, a) / binom(P - 1, i + a) * binom(q, j) *
-                           binom(q, b) / binom(Q, j + b);
-          nu[static_cast<std::size_t>((i + a) * (Q + 1) + j + b)] +=
-              c * (d.tail<3>() * x(0) - x.tail<3>() * d(0));
-        }
-    }
-  for (int k = 0; k <= P; ++k)
-    for (int l = 0; l <= Q; ++l) {
-      const double f = static_cast<double>(k) / P;
-      V3 v = V3::Zero();
-      if (k > 0) v += f * nu[static_cast<std::size_t>((k - 1) * (Q + 1) + l)];
-      if (k < P) v += (1 - f) * nu[static_cast<std::size_t>(k * (Q + 1) + l)];
-      cu[id(k, l)] = v;
-    }
-  // N_v: (p, q - 1) x (p, q) -> (2p, 2q - 1), then elevated along v.
-  std::vector<V3> nv(static_cast<std::size_t>((P + 1) * Q), V3::Zero());
-  for (int i = 0; i <= p; ++i)
-    for (int j = 0; j < q; ++j) {
-      const V4 d = q * (n.at(i, j + 1) - n.at(i, j));
-      for (int a = 0; a <= p; ++a)
-        for (int b = 0; b <= q; ++b) {
-          const V4& x = n.at(a, b);
-          const double c = binom(p, i) * binom(p, a) / binom(P, i + a) * binom(q - 1, j) *
-                           binom(q, b) / binom(Q - 1, j + b);
-          nv[static_cast<std::size_t>((i + a) * Q + j + b)] +=
-              c * (d.tail<3>() * x(0) - x.tail<3>() * d(0));
-        }
-    }
-  for (int k = 0; k <= P; ++k)
-    for (int l = 0; l <= Q; ++l) {
-      const double f = static_cast<double>(l) / Q;
-      V3 v = V3::Zero();
-      if (l > 0) v += f * nv[static_cast<std::size_t>(k * Q + l - 1)];
-      if (l < Q) v += (1 - f) * nv[static_cast<std::size_t>(k * Q + l)];
-      cv[id(k, l)] = v;
-    }
-}
-
-/// The injectivity test. Over a convex parameter domain, x(a) - x(b) is the integral of
-/// J (a - b) along the segment, J = [x_u x_v] = sum_k B_k [Cu_k Cv_k] / w^2 (piecewise, for
-/// a continuous surface of several patches): a positive combination of the 3 x 2 matrices
-/// [Cu_k Cv_k]. With A = the pseudo-inverse of their mean, every A [Cu_k Cv_k] = s_k (I + E_k)
-/// with s_k > 0 and |E_k|_2 < 1 makes every positive combination s (I + E), |E|_2 < 1: never
-/// singular, so x(a) != x(b) for a != b. The pairs are added per piece by `add`, each
-/// scaled to the common parameters (dividing by the piece's extent in them).
-class Injectivity {
- public:
-  void add(const Net& n, double du, double dv) {
-    hodographs(n, cu_, cv_);
-    for (std::size_t k = 0; k < cu_.size(); ++k) {
-      Eigen::Matrix<double, 3, 2> m;
-      m.col(0) = cu_[k] / du;
-      m.col(1) = cv_[k] / dv;
-      const double f = m.norm();
-      if (!(f > 0) || !std::isfinite(f)) {
-        degenerate_ = true;
-        continue;
-      }
-      js_.push_back(m / f);
-    }
-  }
-  bool injective() const {
-    if (degenerate_ || js_.empty()) return false;
-    Eigen::Matrix<double, 3, 2> mean = Eigen::Matrix<double, 3, 2>::Zero();
-    for (const auto& m : js_) mean += m;
-    mean /= static_cast<double>(js_.size());
-    const Eigen::Matrix2d gram = mean.transpose() * mean;
-    if (!(gram.determinant() > 1e-12 * gram.trace() * gram.trace())) return false;
-    const Eigen::Matrix<double, 2, 3> a = gram.inverse() * mean.transpose();
-    std::vector<Eigen::Matrix2d> gs;
-    double g12 = 0, g21 = 0;
-    for (const auto& m : js_) {
-      gs.push_back(a * m);
-      g12 = std::max(g12, std::abs(gs.back()(0, 1)));
-      g21 = std::max(g21, std::abs(gs.back()(1, 0)));
-    }
-    // Rescaling the second parameter by l (G -> diag(1, 1/l) G diag(1, l)) keeps the
-    // argument and balances the two off-diagonal terms.
-    const double l = g12 > 0 && g21 > 0 ? std::sqrt(g21 / g12) : 1.0;
-    for (auto g : gs) {
-      g(0, 1) *= l;
-      g(1, 0) /= l;
-      const double s = g.trace() / 2;
-      if (!(s > 0)) return false;
-      const Eigen::Matrix2d e = g / s - Eigen::Matrix2d::Identity();
-      // |E|_2^2 is the larger eigenvalue of E^T E (2 x 2, closed form).
-      const Eigen::Matrix2d ete = e.transpose() * e;
-      const double tr = ete.trace(), det = ete.determinant();
-      const double lmax = tr / 2 + std::sqrt(std::max(0.0, tr * tr / 4 - det));
-      if (!(lmax < 1 - 1e-6)) return false;  // the margin covers rounding
-    }
-    return true;
-  }
-
- private:
-  std::vector<V3> cu_, cv_;
-  std::vector<Eigen::Matrix<double, 3, 2>> js_;
-  bool degenerate_ = false;
-};
+using bezier::boxes_apart;
+using bezier::Injectivity;
+using bezier::Net;
+using bezier::restrict_net;
+using bezier::restrict_side;
+using bezier::V3;
+using bezier::V4;
 
 /// A patch of one face: its parameter box, its place in the common parameters (T = t, V the
 /// profile's edges laid end to end, each as long as its control polygon), its net.
 struct Piece {
   std::size_t face = 0;
   double t0 = 0, t1 = 0, v0 = 0, v1 = 0;
-  double T0 = 0, T1 = 0, V0 = 0, V1 = 0;
+  double V0 = 0, V1 = 0;
   Net net;
 };
 
@@ -295,7 +136,6 @@ struct Cap {
   double c = 0;
   V3 lo, hi;
   std::vector<V4> boundary;
-  bool planar = true;
 };
 
 class Prover {
@@ -377,10 +217,7 @@ class Prover {
       for (std::size_t b = a + 1;
            b < order.size() && cells_[order[b]].lo(axis) <= ca.hi(axis) + gap; ++b) {
         const Cell& cb = cells_[order[b]];
-        bool overlap = true;
-        for (int k = 0; k < 3; ++k)
-          if (ca.hi(k) + gap < cb.lo(k) || cb.hi(k) + gap < ca.lo(k)) overlap = false;
-        if (overlap)
+        if (!boxes_apart(ca.lo, ca.hi, cb.lo, cb.hi, gap))
           stack_.push_back({std::min(order[a], order[b]), std::max(order[a], order[b]), -1});
       }
     }
@@ -445,8 +282,6 @@ class Prover {
           pc.t1 = ref.b();
           pc.v0 = rows.front()[l].a();
           pc.v1 = rows.front()[l].b();
-          pc.T0 = pc.t0;
-          pc.T1 = pc.t1;
           pc.V0 = V + len * (pc.v0 - va) / (vb - va);
           pc.V1 = V + len * (pc.v1 - va) / (vb - va);
           pc.net.p = s.degree_u;
@@ -510,8 +345,8 @@ class Prover {
 
   void finish_cell(Cell& c) {
     const Piece& pc = pieces_[c.piece];
-    c.T0 = pc.T0 + c.s0 * (pc.T1 - pc.T0);
-    c.T1 = pc.T0 + c.s1 * (pc.T1 - pc.T0);
+    c.T0 = pc.t0 + c.s0 * (pc.t1 - pc.t0);
+    c.T1 = pc.t0 + c.s1 * (pc.t1 - pc.t0);
     c.V0 = pc.V0 + c.r0 * (pc.V1 - pc.V0);
     c.V1 = pc.V0 + c.r1 * (pc.V1 - pc.V0);
     c.pts.clear();
@@ -600,10 +435,10 @@ class Prover {
     for (const auto& p : pieces_)
       for (const double sh : {0.0, vtotal_, -vtotal_}) {
         if (sh != 0 && !closed_) continue;
-        const double a0 = std::max(T0, p.T0), a1 = std::min(T1, p.T1);
+        const double a0 = std::max(T0, p.t0), a1 = std::min(T1, p.t1);
         const double b0 = std::max(V0, p.V0 + sh), b1 = std::min(V1, p.V1 + sh);
         if (a1 - a0 <= tol || b1 - b0 <= tol) continue;
-        const double s0 = (a0 - p.T0) / (p.T1 - p.T0), s1 = (a1 - p.T0) / (p.T1 - p.T0);
+        const double s0 = (a0 - p.t0) / (p.t1 - p.t0), s1 = (a1 - p.t0) / (p.t1 - p.t0);
         const double r0 = (b0 - p.V0 - sh) / (p.V1 - p.V0), r1 = (b1 - p.V0 - sh) / (p.V1 - p.V0);
         inj.add(restrict_net(p.net, std::max(0.0, s0), std::min(1.0, s1), std::max(0.0, r0),
                              std::min(1.0, r1)),
@@ -616,15 +451,9 @@ class Prover {
   /// rounding.
   bool apart(const Cell& a, const Cell& b) const {
     const double gap = 1e-12 * scale_;
-    for (int k = 0; k < 3; ++k)
-      if (a.hi(k) + gap < b.lo(k) || b.hi(k) + gap < a.lo(k)) return true;
-    auto normal = [](const Cell& c) {
-      const int p = c.net.p, q = c.net.q;
-      auto x = [&](int i, int j) { return c.pts[static_cast<std::size_t>(i * (q + 1) + j)]; };
-      return V3((x(p, q) - x(0, 0)).cross(x(p, 0) - x(0, q)));
-    };
+    if (boxes_apart(a.lo, a.hi, b.lo, b.hi, gap)) return true;
     const V3 ca = (a.lo + a.hi) / 2, cb = (b.lo + b.hi) / 2;
-    for (const V3& d : {V3(cb - ca), normal(a), normal(b)}) {
+    for (const V3& d : {V3(cb - ca), mean_normal(a), mean_normal(b)}) {
       if (!(d.norm() > 0)) continue;
       const V3 u = d.normalized();
       double amin = std::numeric_limits<double>::infinity(), amax = -amin, bmin = amin,
@@ -665,6 +494,7 @@ class Prover {
     return false;
   }
 
+  /// The normal of a part's corner quadrilateral (its control net's corners).
   static V3 mean_normal(const Cell& c) {
     const int p = c.net.p, q = c.net.q;
     auto x = [&](int i, int j) { return c.pts[static_cast<std::size_t>(i * (q + 1) + j)]; };
@@ -718,10 +548,7 @@ class Prover {
         if (s != sign) strict = false;
       }
     if (strict && (!on_end || ends_on_plane)) return false;
-    bool outside = false;
-    for (int a = 0; a < 3; ++a)
-      if (c.hi(a) + gap < cap.lo(a) || cap.hi(a) + gap < c.lo(a)) outside = true;
-    if (outside) return false;
+    if (boxes_apart(c.lo, c.hi, cap.lo, cap.hi, gap)) return false;
     if (c.diam < out_.eps) {
       out_.status = SelfIntersectionProof::Status::touching;
       out_.first = place(c);
@@ -741,8 +568,7 @@ class Prover {
     const Cap& a = caps_[0];
     const Cap& b = caps_[1];
     const double gap = 1e-12 * scale_;
-    for (int k = 0; k < 3; ++k)
-      if (a.hi(k) + gap < b.lo(k) || b.hi(k) + gap < a.lo(k)) return true;
+    if (boxes_apart(a.lo, a.hi, b.lo, b.hi, gap)) return true;
     auto one_side = [gap](const Cap& plane, const Cap& other) {
       int sign = 0;
       for (const auto& h : other.boundary) {
