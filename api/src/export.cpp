@@ -235,6 +235,21 @@ void write_curve(const sweep::NurbsCurve<double>& c, Format f, const std::string
 void write_surfaces(const std::vector<sweep::NurbsSurface<double>>& surfaces, Format f,
                     const ExportOptions& opt, ExportResult& r, const ExportInfo& info,
                     const json& approximation) {
+  const bool one_surface = surfaces.size() == 1 && !opt.solid;
+  if (f == Format::json) {  // exact surfaces per edge (JSON readers handle C0 knots)
+    json extra{{"units", r.units}, {"continuity", {r.continuity_u, r.continuity_v}}};
+    if (!approximation.is_null()) extra["approximation"] = approximation;
+    if (!one_surface && opt.solid) extra["volume"] = *r.volume;
+    if (one_surface)
+      write_surface_json(opt.output, surfaces.front(), extra);
+    else
+      write_shell_json(opt.output, surfaces, opt.solid, extra);
+    r.faces = static_cast<int>(surfaces.size());
+    r.poles = count_poles(surfaces);
+    return;
+  }
+  // The other formats write a shell of C1 faces: split copies, made only for them (for a
+  // 10^4-span surface they are megabytes).
   sweep::NurbsShell<double> shell;
   for (const auto& s : surfaces) {
     if (opt.single_face) {
@@ -248,20 +263,9 @@ void write_surfaces(const std::vector<sweep::NurbsSurface<double>>& surfaces, Fo
     }
   }
   shell.closed = opt.solid;
-  const bool one_surface = surfaces.size() == 1 && !opt.solid;
   switch (f) {
-    case Format::json: {  // exact surfaces per edge (JSON readers handle C0 knots)
-      json extra{{"units", r.units}, {"continuity", {r.continuity_u, r.continuity_v}}};
-      if (!approximation.is_null()) extra["approximation"] = approximation;
-      if (!one_surface && opt.solid) extra["volume"] = *r.volume;
-      if (one_surface)
-        write_surface_json(opt.output, surfaces.front(), extra);
-      else
-        write_shell_json(opt.output, surfaces, opt.solid, extra);
-      r.faces = static_cast<int>(surfaces.size());
-      r.poles = count_poles(surfaces);
-      return;
-    }
+    case Format::json:  // written above
+      break;
     case Format::step:
       write_step(opt.output, shell, info);
       break;

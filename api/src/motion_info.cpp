@@ -50,10 +50,8 @@ json interpolation_residuals(const kernel::QMotion<Scalar>& m,
   return json(kernel::pose_residuals(m, P, ts));
 }
 
-}  // namespace
-
-json motion_info(const MotionFile& f, bool exact) {
-  const kernel::Motion<double> motion = to_motion(f);  // also validates the method block
+/// motion_info of the file f, read into `motion` (to_motion, which validates the method block).
+json info_of(const MotionFile& f, const kernel::Motion<double>& motion, bool exact) {
   const kernel::QMotion<double>& m = motion.curve;
   if (exact && (m.degree() > kMaxExactInfoDegree || m.segments() > kMaxExactInfoSegments))
     throw Error(Errc::invalid_input,
@@ -138,6 +136,10 @@ json motion_info(const MotionFile& f, bool exact) {
   return out;
 }
 
+}  // namespace
+
+json motion_info(const MotionFile& f, bool exact) { return info_of(f, to_motion(f), exact); }
+
 void require_in_interval(double t, double a, double b, const std::string& t_text) {
   if (t >= a && t <= b) return;
   std::ostringstream os;
@@ -171,12 +173,15 @@ json motion_eval(const MotionFile& f, double t, const Eigen::Vector3d& x, std::s
 }
 
 json info_file(const std::string& path, bool exact) {
-  std::string text = read_text_file(path);
-  if (auto f = parse_motion_fast(text, path)) {
-    std::string().swap(text);  // read: its megabytes go before the work
-    return motion_info(*f, exact);
+  auto read = read_motion_or_text(path);
+  if (auto* f = std::get_if<MotionFile>(&read)) {
+    if (exact) return motion_info(*f, exact);
+    // Without --exact the control points' numbers are not read again: they go as soon as
+    // the motion is built (to_motion(MotionFile&&) leaves the method and poses in f).
+    const kernel::Motion<double> motion = to_motion(std::move(*f));
+    return info_of(*f, motion, exact);
   }
-  json doc = parse_json(text, path, "method");
+  json doc = parse_json(std::get<std::string>(read), path, "method");
   if (is_qspline_document(doc)) {
     if (exact)
       throw Error(Errc::invalid_input, path +
@@ -189,14 +194,12 @@ json info_file(const std::string& path, bool exact) {
 
 json eval_file(const std::string& path, double t, const Eigen::Vector3d& point,
                std::string* warning, const std::string& t_text) {
-  std::string text = read_text_file(path);
-  std::optional<MotionFile> fast = parse_motion_fast(text, path, /*with_method=*/false);
-  if (fast) std::string().swap(text);  // read: its megabytes go before the work
-  json doc = fast ? json() : parse_json(text, path, "method");
-  if (!fast && is_qspline_document(doc))
+  auto read = read_motion_or_text(path, /*with_method=*/false);
+  if (auto* f = std::get_if<MotionFile>(&read)) return motion_eval(*f, t, point, warning, t_text);
+  json doc = parse_json(std::get<std::string>(read), path, "method");
+  if (is_qspline_document(doc))
     return qspline_eval(qspline_from_document(doc, path), t, point, t_text);
-  const MotionFile f = fast ? std::move(*fast) : parse_motion(std::move(doc), path);
-  return motion_eval(f, t, point, warning, t_text);
+  return motion_eval(parse_motion(std::move(doc), path), t, point, warning, t_text);
 }
 
 }  // namespace qmotion

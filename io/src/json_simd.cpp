@@ -4,9 +4,14 @@
 
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
 
 #include <atomic>
 #include <charconv>
+#include <cstdint>
+#include <cstring>
 #include <functional>
 #include <qmotion/io/json_number.hpp>
 #include <string_view>
@@ -136,7 +141,7 @@ bool build(sj::value v, json& out, bool plain, std::size_t depth) {
   return walk(v, &out, plain, depth);
 }
 
-bool check(sj::value v) { return walk(v, nullptr, false); }
+bool check(sj::value v, std::size_t depth) { return walk(v, nullptr, false, depth); }
 
 bool number(sj::value v, Number& out, bool lean) {
   sj::json_type type;
@@ -310,6 +315,163 @@ bool number_rows(std::string_view text, std::size_t width,
     tbb::parallel_for(std::size_t(0), parts.size(), read);
   }
   return ok;
+}
+
+Padded::Padded(const std::string& text) : text_(text) {
+  if (text.capacity() - text.size() < simdjson::SIMDJSON_PADDING) {
+    copy_ = simdjson::padded_string(text);
+    text_ = std::string_view(copy_.data(), copy_.size());
+  }
+}
+
+namespace {
+
+/// Past the string whose opening quote is at s[i]; npos when it does not close.
+std::size_t skip_string(std::string_view s, std::size_t i) {
+  for (++i; i < s.size(); ++i) {
+    if (s[i] == '\\') {
+      ++i;
+    } else if (s[i] == '"') {
+      return i + 1;
+    }
+  }
+  return std::string_view::npos;
+}
+
+/// The index of the first bracket or quote from i on, stepping over the digits of the large
+/// arrays sixteen bytes at a time with SSE2, else eight (SWAR: a byte equal to c shows as a
+/// high bit of (y - 1...1) & ~y with y = x ^ c...c; false matches lie only above a true one,
+/// so the lowest is exact). The last few bytes of s may come back unexamined (an index below
+/// s.size()) for the caller's byte loop.
+std::size_t next_special(std::string_view s, std::size_t i) {
+#ifdef __SSE2__
+  // Sixteen bytes a step where SSE2 is (every x86-64): one compare per character sought.
+  const __m128i open = _mm_set1_epi8('['), close = _mm_set1_epi8(']'), brace = _mm_set1_epi8('{'),
+                end = _mm_set1_epi8('}'), quote = _mm_set1_epi8('"');
+  for (; i + 16 <= s.size(); i += 16) {
+    const __m128i x = _mm_loadu_si128(reinterpret_cast<const __m128i*>(s.data() + i));
+    const __m128i hit =
+        _mm_or_si128(_mm_or_si128(_mm_cmpeq_epi8(x, open), _mm_cmpeq_epi8(x, close)),
+                     _mm_or_si128(_mm_or_si128(_mm_cmpeq_epi8(x, brace), _mm_cmpeq_epi8(x, end)),
+                                  _mm_cmpeq_epi8(x, quote)));
+    if (const int mask = _mm_movemask_epi8(hit))
+      return i + static_cast<std::size_t>(__builtin_ctz(static_cast<unsigned>(mask)));
+  }
+#endif
+  constexpr std::uint64_t ones = 0x0101010101010101ULL, highs = 0x8080808080808080ULL;
+  const auto has = [](std::uint64_t x, std::uint64_t c) {
+    const std::uint64_t y = x ^ (ones * c);
+    return (y - ones) & ~y & highs;
+  };
+  for (; i + 8 <= s.size(); i += 8) {
+    std::uint64_t x = 0;
+    std::memcpy(&x, s.data() + i, 8);
+    const std::uint64_t folded = x | (ones * 0x20);  // '[' ']' fold onto '{' '}'
+    const std::uint64_t hits = has(folded, '{') | has(folded, '}') | has(x, '"');
+    if (hits) {
+      // The first byte in memory is the word's lowest on a little-endian machine.
+      constexpr bool little = __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__;
+      return little ? i + static_cast<std::size_t>(__builtin_ctzll(hits) >> 3) : i;
+    }
+  }
+  return i;
+}
+
+/// Past the value starting at s[i]: an array or object up to its closing bracket (strings
+/// skipped), a string up to its closing quote, anything else up to the next delimiter.
+/// npos when a bracket or quote does not close. The brackets' kinds are not matched: the
+/// reader of the slice validates it.
+std::size_t skip_value(std::string_view s, std::size_t i) {
+  constexpr auto npos = std::string_view::npos;
+  if (i >= s.size()) return npos;
+  if (s[i] == '"') return skip_string(s, i);
+  if (s[i] != '[' && s[i] != '{') {
+    while (i < s.size() && !json_space(s[i]) && s[i] != ',' && s[i] != '}' && s[i] != ']') ++i;
+    return i;
+  }
+  std::size_t depth = 0;
+  for (; i < s.size(); ++i) {
+    i = next_special(s, i);
+    if (i == s.size()) break;
+    const char c = s[i];
+    if (c == '"') {
+      i = skip_string(s, i);
+      if (i == npos) return npos;
+      --i;
+    } else if (c == '[' || c == '{') {
+      ++depth;
+    } else if ((c == ']' || c == '}') && --depth == 0) {
+      return i + 1;
+    }
+  }
+  return npos;
+}
+
+std::size_t skip_spaces(std::string_view s, std::size_t i) {
+  while (i < s.size() && json_space(s[i])) ++i;
+  return i;
+}
+
+}  // namespace
+
+bool members(std::string_view s, std::vector<Member>& out) {
+  out.clear();
+  std::size_t i = skip_spaces(s, 0);
+  if (i == s.size() || s[i] != '{') return false;
+  i = skip_spaces(s, i + 1);
+  if (i < s.size() && s[i] == '}') return skip_spaces(s, i + 1) == s.size();
+  while (true) {
+    if (i == s.size() || s[i] != '"') return false;
+    const std::size_t close = s.find_first_of("\\\"", i + 1);
+    if (close == std::string_view::npos || s[close] != '"') return false;  // an escape: decline
+    const std::string_view key = s.substr(i + 1, close - i - 1);
+    i = skip_spaces(s, close + 1);
+    if (i == s.size() || s[i] != ':') return false;
+    i = skip_spaces(s, i + 1);
+    const std::size_t end = skip_value(s, i);
+    if (end == std::string_view::npos || end == i) return false;
+    out.push_back({key, s.substr(i, end - i)});
+    i = skip_spaces(s, end);
+    if (i == s.size()) return false;
+    if (s[i] == '}') return skip_spaces(s, i + 1) == s.size();
+    if (s[i] != ',') return false;
+    i = skip_spaces(s, i + 1);
+  }
+}
+
+bool read_member(std::string_view slice, const std::function<bool(sj::value)>& read) {
+  if (slice.empty()) return false;
+  if (slice.front() != '[' && slice.front() != '{') {
+    // A scalar root is not a value in simdjson's on-demand API: read it as [slice].
+    std::string wrapped;
+    wrapped.reserve(slice.size() + 2);
+    wrapped.append("[").append(slice).append("]");
+    return read_value(wrapped, [&](sj::value v) {
+      sj::array a;
+      if (v.get_array().get(a)) return false;
+      std::size_t n = 0;
+      for (auto e : a) {
+        sj::value ev;
+        if (n++ > 0 || e.get(ev) || !read(ev)) return false;
+      }
+      return n == 1;
+    });
+  }
+  // A parser of its own above 64 KiB, freed after: the thread's parser keeps the buffers of
+  // the longest text it ever read (5 bytes a character reserved).
+  thread_local sj::parser shared;
+  std::unique_ptr<sj::parser> own;
+  if (slice.size() > kSharedParserChars) own = std::make_unique<sj::parser>();
+  sj::parser& parser = own ? *own : shared;
+  sj::document doc;
+  sj::value v;
+  // The slice lies in a Padded text: the padding's bytes past its end are readable.
+  if (parser.iterate(slice.data(), slice.size(), slice.size() + simdjson::SIMDJSON_PADDING)
+          .get(doc) ||
+      doc.get_value().get(v) || !read(v))
+    return false;
+  const char* rest = nullptr;
+  return doc.current_location().get(rest) == simdjson::OUT_OF_BOUNDS;
 }
 
 bool read_value(std::string_view text, const std::function<bool(sj::value)>& read) {

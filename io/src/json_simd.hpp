@@ -18,6 +18,8 @@ namespace sj = simdjson::ondemand;
 
 /// Texts longer than this are read with a parser of their own (Document::own).
 inline constexpr std::size_t kOwnParserChars = std::size_t(1) << 20;
+/// Members longer than this are read with a parser of their own (read_member).
+inline constexpr std::size_t kSharedParserChars = std::size_t(64) << 10;
 
 /// A document being read with this thread's parser (a long text: with its own): the text in place
 /// when it has simdjson's padding as spare capacity (read_text_file leaves it), else a padded copy.
@@ -41,8 +43,8 @@ struct Document {
 /// words the message), and for arrays and objects nested more than kMaxJsonDepth levels
 /// deep in the document, v lying `depth` levels deep.
 bool build(sj::value v, nlohmann::json& out, bool plain, std::size_t depth = 0);
-/// Validates v whole without building anything.
-bool check(sj::value v);
+/// Validates v whole without building anything (v lying `depth` levels deep, as in build).
+bool check(sj::value v, std::size_t depth = 0);
 
 /// The number at v (a JSON number, or a string holding a plain decimal literal) with its
 /// source text, as read_number would read it. False for anything else (including "p/q"
@@ -66,6 +68,39 @@ bool numbers(sj::value v, std::vector<Number>& out, bool lean = false);
 bool number_rows(std::string_view text, std::size_t width,
                  const std::function<bool(std::size_t, std::size_t)>& rows,
                  const std::function<Number*(std::size_t)>& row, bool lean);
+
+/// A text with simdjson's padding readable past its end: the text itself when its spare
+/// capacity holds the padding (read_text_file leaves it), else a padded copy. Slices of
+/// view() can be read in place (read_member).
+struct Padded {
+  explicit Padded(const std::string& text);  ///< text must outlive the Padded
+  std::string_view view() const { return text_; }
+
+ private:
+  simdjson::padded_string copy_;
+  std::string_view text_;
+};
+
+/// One member of a JSON object as members() finds it: the key as written (no escapes) and
+/// the text of its value.
+struct Member {
+  std::string_view key;
+  std::string_view value;
+};
+
+/// The members of the JSON object that is `text` (white space around it allowed), found by
+/// a scanner that indexes nothing: each value's extent comes from its brackets and quotes,
+/// and is not validated (read_member does that when it reads the value). False when the text
+/// is not an object of that form, or a key holds an escape: the caller then reads the text
+/// with a full parser, which words any refusal.
+bool members(std::string_view text, std::vector<Member>& out);
+
+/// Reads one value's text, a slice of a Padded view (members() gives them), and hands the
+/// value to `read`: arrays and objects in place, with a parser whose index covers the slice
+/// alone (a parser of its own above kSharedParserChars); a scalar through a small bracketed
+/// copy, since simdjson does not hand out a document's scalar root as a value. False when the
+/// slice is not one valid JSON value or `read` returns false.
+bool read_member(std::string_view slice, const std::function<bool(sj::value)>& read);
 
 /// Reads `text`, one JSON value's text cut out of a document (sj::array::raw_json), with a
 /// parser of its own, and hands the value to `read`; false when it is not valid or `read`

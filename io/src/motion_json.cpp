@@ -380,6 +380,17 @@ kernel::Motion<double> to_motion(const MotionFile& f) {
   return m;
 }
 
+kernel::Motion<double> to_motion(MotionFile&& f) {
+  kernel::Motion<double> m(to_motion_double(f), std::nullopt, std::nullopt, f.units, f.source);
+  // Each part of the file goes as soon as it is read: of a 10^4-pose motion, the control
+  // points' numbers are 5 MB and the factors' 1 MB.
+  std::vector<std::array<Number, 8>>().swap(f.ctrl);
+  m.factors = factors_double(f, m.curve);
+  decltype(f.factor_rows)().swap(f.factor_rows);
+  m.provenance = read_provenance(f, m.curve, m.factors);
+  return m;
+}
+
 json motion_document(const kernel::Motion<double>& m, const json& input_poses) {
   return motion_to_json(m.curve, method_json(m, input_poses, [](double v) { return json(v); }),
                         m.units);

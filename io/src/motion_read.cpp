@@ -1,11 +1,13 @@
 // io/src/motion_read.cpp: motion files read (docs/formats.md): a fast reader of the common
 // layout that keeps no tree, the tree reader that words every refusal, and the checks both
 // share once the fields are read.
+#include <functional>
 #include <qmotion/io/json_number.hpp>
 #include <qmotion/io/motion_json.hpp>
 #include <qmotion/io/poses.hpp>
 #include <qmotion/kernel/error.hpp>
 #include <qmotion/kernel/interpolation.hpp>
+#include <variant>
 
 #include "json_simd.hpp"
 
@@ -61,10 +63,7 @@ namespace {
 /// A method block's control points as rows of one width, read lean (the scanner on every
 /// core, or simdjson when the scanner declines); false for anything else (no rows, an empty
 /// row, rows of different widths, not numbers): the tree reader then reads and words it.
-bool control_rows(simd::sj::value v, MotionFile::Rows& out) {
-  simd::sj::array a;
-  std::string_view raw;
-  if (v.get_array().get(a) || a.raw_json().get(raw)) return false;
+bool control_rows(std::string_view raw, MotionFile::Rows& out) {
   const bool scanned = simd::number_rows(
       raw, 0,
       [&](std::size_t n, std::size_t w) {
@@ -128,114 +127,158 @@ bool control_points(std::string_view raw, std::vector<std::array<Number, 8>>& ct
   });
 }
 
+/// The method block's text: null, or an object whose members are read one by one (the input
+/// poses straight into a pose set, rows of numbers by the scanner, the rest into a tree), or
+/// only validated, member by member, when the caller does not want it. False for anything
+/// else: the tree reader then reads and words it.
+bool method_block(std::string_view raw, MotionFile& f, bool with_method,
+                  const std::function<void(const char*)>& read_to) {
+  namespace sj = simd::sj;
+  if (raw == "null") {
+    if (with_method) f.method = nullptr;
+    return true;
+  }
+  std::vector<simd::Member> members;
+  if (!simd::members(raw, members)) return false;
+  constexpr std::size_t depth = 2;  // the method's members lie two levels deep
+  if (!with_method) {
+    for (const auto& m : members) {
+      if (!simd::read_member(m.value, [](sj::value v) { return simd::check(v, depth); }))
+        return false;
+      read_to(m.value.data() + m.value.size());
+    }
+    return true;
+  }
+  f.method = json::object();
+  f.input_poses.reset();
+  f.factor_rows.clear();
+  for (const auto& [key, value] : members) {
+    bool ok = true;
+    if (key == "input_poses") {
+      if (f.input_poses) return false;  // given twice: the tree reader decides
+      ok = simd::read_member(value, [&](sj::value v) {
+        try {
+          f.input_poses = simd::poses(v, f.source + ": method.input_poses");
+        } catch (const Error&) {
+          return false;  // refused where the tree reader refuses it, in its words
+        }
+        return f.input_poses.has_value();
+      });
+    } else if (key == "rotation_control_points" || key == "translation_control_points" ||
+               key == "translation2_control_points") {
+      // Rows of equal width, read lean; anything else (or a repeat) the tree reader words.
+      ok = !f.factor_rows.count(key) && value.front() == '[' &&
+           control_rows(value, f.factor_rows[std::string(key)]);
+    } else {
+      ok = simd::read_member(value, [&](sj::value v) {
+        return simd::build(v, f.method[std::string(key)], /*plain=*/true, depth);
+      });
+    }
+    if (!ok) return false;
+    read_to(value.data() + value.size());
+  }
+  return true;
+}
+
 }  // namespace
 
-/// The motion file read straight from the text by simdjson, without a DOM for the
-/// control points and knots (a 10^4-pose motion is 10^5 numbers). std::nullopt as soon as
+namespace {
+
+/// The motion file read straight from the text: members() cuts the object into its members
+/// without indexing the text, the rows of numbers go to the scanner, and each other member is
+/// read by simdjson on its own (the index then covers one member, not the file). No DOM for
+/// the control points and knots (a 10^4-pose motion is 10^5 numbers). std::nullopt as soon as
 /// anything is unusual (a field of the wrong kind, an exact "p/q" number, invalid JSON):
 /// parse_motion then reads the file and words the message. Throws only finish_motion's
 /// errors, which both readers share.
-std::optional<MotionFile> parse_motion_fast(const std::string& text, const std::string& source,
-                                            bool with_method) {
+/// parse_motion_fast on a text with simdjson's padding past its end; read_to(p) is told that
+/// nothing before p will be read again.
+std::optional<MotionFile> parse_motion_view(std::string_view text, const std::string& source,
+                                            bool with_method,
+                                            const std::function<void(const char*)>& read_to) {
   namespace sj = simd::sj;
-  simd::Document d(text);
-  sj::object root;
-  if (!d.ok || d.doc.get_object().get(root)) return std::nullopt;
+  std::vector<simd::Member> root;
+  if (!simd::members(text, root)) return std::nullopt;
   MotionFile f;
   f.source = source;
   bool type = false, basis = false, degree = false, range = false, ctrl = false,
        knots_given = false;
-  const auto numbers = [](sj::value v, std::vector<Number>& out, bool lean = false) {
+  const auto numbers = [](std::string_view raw, std::vector<Number>& out, bool lean = false) {
     out.clear();
-    return simd::numbers(v, out, lean);
+    return simd::read_member(raw, [&](sj::value v) { return simd::numbers(v, out, lean); });
   };
-  for (auto field : root) {
-    std::string_view key;
-    if (field.unescaped_key().get(key)) return std::nullopt;
-    sj::value v = field.value();
+  for (const auto& [key, raw] : root) {
+    bool ok = true;
     if (key == "type") {
-      std::string_view t;
-      if (v.get_string().get(t) || t != "q-motion") return std::nullopt;
+      ok = simd::read_member(raw, [&](sj::value v) {
+        std::string_view t;
+        return !v.get_string().get(t) && t == "q-motion";
+      });
       type = true;
     } else if (key == "basis") {
-      std::string_view b;
-      if (v.get_string().get(b) || (b != "bezier" && b != "bspline")) return std::nullopt;
-      f.basis = b == "bezier" ? kernel::Basis::bezier : kernel::Basis::bspline;
+      ok = simd::read_member(raw, [&](sj::value v) {
+        std::string_view b;
+        if (v.get_string().get(b) || (b != "bezier" && b != "bspline")) return false;
+        f.basis = b == "bezier" ? kernel::Basis::bezier : kernel::Basis::bspline;
+        return true;
+      });
       basis = true;
     } else if (key == "degree") {
-      std::int64_t g = 0;
-      sj::json_type t;
-      if (v.type().get(t) || t != sj::json_type::number || v.get_int64().get(g) || g < 0 || g > 200)
-        return std::nullopt;
-      f.degree = static_cast<int>(g);
+      ok = simd::read_member(raw, [&](sj::value v) {
+        std::int64_t g = 0;
+        sj::json_type t;
+        if (v.type().get(t) || t != sj::json_type::number || v.get_int64().get(g) || g < 0 ||
+            g > 200)
+          return false;
+        f.degree = static_cast<int>(g);
+        return true;
+      });
       degree = true;
     } else if (key == "param_range") {
       std::vector<Number> r;
-      if (!numbers(v, r) || r.size() != 2 || !(r[0].value < r[1].value)) return std::nullopt;
-      f.range = {r[0], r[1]};
+      ok = numbers(raw, r) && r.size() == 2 && r[0].value < r[1].value;
+      if (ok) f.range = {r[0], r[1]};
       range = true;
     } else if (key == "units") {
-      std::string_view u;
-      if (v.get_string().get(u) || !is_known_unit(std::string(u))) return std::nullopt;
-      f.units = std::string(u);
+      ok = simd::read_member(raw, [&](sj::value v) {
+        std::string_view u;
+        if (v.get_string().get(u) || !is_known_unit(std::string(u))) return false;
+        f.units = std::string(u);
+        return true;
+      });
     } else if (key == "control_points") {
-      sj::array rows;
-      std::string_view raw;
-      if (v.get_array().get(rows) || rows.raw_json().get(raw)) return std::nullopt;
-      if (!control_points(raw, f.ctrl)) return std::nullopt;
+      ok = raw.front() == '[' && control_points(raw, f.ctrl);
       ctrl = true;
     } else if (key == "knots") {
-      bool null = false;
-      if (v.is_null().get(null)) return std::nullopt;
-      knots_given = !null;
-      if (!null && !numbers(v, f.knots, /*lean=*/true)) return std::nullopt;
+      knots_given = raw != "null";
+      if (knots_given) ok = numbers(raw, f.knots, /*lean=*/true);
     } else if (key == "method") {
-      sj::json_type t;
-      if (v.type().get(t) || (t != sj::json_type::object && t != sj::json_type::null))
-        return std::nullopt;
-      if (!with_method) {
-        if (!simd::check(v)) return std::nullopt;
-        continue;
-      }
-      if (t == sj::json_type::null) {
-        f.method = nullptr;
-        continue;
-      }
-      // Member by member: the input poses straight into a pose set, the rest into a tree.
-      sj::object mo;
-      if (v.get_object().get(mo)) return std::nullopt;
-      f.method = json::object();
-      f.input_poses.reset();
-      f.factor_rows.clear();
-      for (auto mf : mo) {
-        std::string_view mk;
-        if (mf.unescaped_key().get(mk)) return std::nullopt;
-        sj::value mv = mf.value();
-        if (mk == "input_poses") {
-          if (f.input_poses) return std::nullopt;  // given twice: the tree reader decides
-          try {
-            f.input_poses = simd::poses(mv, source + ": method.input_poses");
-          } catch (const Error&) {
-            return std::nullopt;  // refused where the tree reader refuses it, in its words
-          }
-          if (!f.input_poses) return std::nullopt;
-        } else if (mk == "rotation_control_points" || mk == "translation_control_points" ||
-                   mk == "translation2_control_points") {
-          // Rows of equal width, read lean; anything else (or a repeat) the tree reader words.
-          if (f.factor_rows.count(mk) || !control_rows(mv, f.factor_rows[std::string(mk)]))
-            return std::nullopt;
-        } else if (!simd::build(mv, f.method[std::string(mk)], /*plain=*/true)) {
-          return std::nullopt;
-        }
-      }
+      ok = method_block(raw, f, with_method, read_to);
     } else {
-      nlohmann::json ignored;  // not read, but it must be valid JSON
-      if (!simd::build(v, ignored, false)) return std::nullopt;
+      ok = simd::read_member(raw, [](sj::value v) { return simd::check(v, 1); });
     }
+    if (!ok) return std::nullopt;
+    read_to(raw.data() + raw.size());
   }
-  if (!type || !basis || !degree || !range || !ctrl || !d.at_end()) return std::nullopt;
+  if (!type || !basis || !degree || !range || !ctrl) return std::nullopt;
   finish_motion(f, knots_given);
   return f;
+}
+
+}  // namespace
+
+std::optional<MotionFile> parse_motion_fast(const std::string& text, const std::string& source,
+                                            bool with_method) {
+  const simd::Padded padded(text);
+  return parse_motion_view(padded.view(), source, with_method, [](const char*) {});
+}
+
+std::optional<MotionFile> parse_motion_fast(PagedText& text, const std::string& source,
+                                            bool with_method) {
+  const char* const base = text.view().data();
+  return parse_motion_view(text.view(), source, with_method, [&](const char* p) {
+    text.release_before(static_cast<std::size_t>(p - base));
+  });
 }
 
 namespace {
@@ -339,8 +382,17 @@ MotionFile parse_motion(json&& doc, const std::string& source) {
   return f;
 }
 
+std::variant<MotionFile, std::string> read_motion_or_text(const std::string& path,
+                                                          bool with_method) {
+  PagedText paged = PagedText::read(path);  // given back as it is read, freed on return
+  if (auto f = parse_motion_fast(paged, path, with_method)) return std::move(*f);
+  return paged.whole(path);
+}
+
 MotionFile read_motion(const std::string& path) {
-  return parse_motion_text(read_text_file(path), path);
+  auto read = read_motion_or_text(path);
+  if (auto* f = std::get_if<MotionFile>(&read)) return std::move(*f);
+  return parse_motion(parse_json(std::get<std::string>(read), path, "method"), path);
 }
 
 MotionFile parse_motion_text(const std::string& text, const std::string& path) {

@@ -167,12 +167,9 @@ void save_motion(const Motion& motion, const std::string& path) {
 }
 
 Motion load_motion(const std::string& path) {
-  std::string text = read_text_file(path);
-  if (auto f = parse_motion_fast(text, path)) {
-    std::string().swap(text);  // read: its megabytes go before the motion is built
-    return to_motion(*f);
-  }
-  json doc = parse_json(text, path, "method");  // one parse for either kind
+  auto read = read_motion_or_text(path);
+  if (auto* f = std::get_if<MotionFile>(&read)) return to_motion(std::move(*f));
+  json doc = parse_json(std::get<std::string>(read), path, "method");  // either kind
   if (is_qspline_document(doc)) return qspline_motion(doc, path);
   return to_motion(parse_motion(std::move(doc), path));
 }

@@ -14,6 +14,12 @@
 // Gauss-Newton), never by OpenCASCADE's projection. Prints a Markdown table.
 //
 //   build/tests/bench/occt_peers [--smoke] [--repeats N] [--out FILE]
+//   build/tests/bench/occt_peers --write-alone MOTION (trajectory X,Y,Z | sweep PROFILE) OUT
+//
+// --write-alone builds what `qmotion trajectory` or `qmotion sweep` builds from the motion
+// file (the library's trajectory_nurbs and sweep_nurbs) and writes it with OpenCASCADE's
+// STEP writer alone, at the 17 digits qmotion writes: tests/bench/memory.sh puts its peak
+// memory beside the command's, the floor a STEP file written through OpenCASCADE has.
 //
 // Every route runs under the malloc settings of the qmotion executable (fixed thresholds).
 // --smoke (CTest) runs one motion and one profile. The exit status is 1 when the exact
@@ -38,6 +44,8 @@
 #include <qmotion/api/interpolate.hpp>
 #include <qmotion/io/occt.hpp>
 #include <qmotion/io/poses.hpp>
+#include <qmotion/io/profiles.hpp>
+#include <qmotion/io/qspline_file.hpp>
 #include <qmotion/kernel/interpolation.hpp>
 #include <qmotion/kernel/parametrization.hpp>
 #include <qmotion/kernel/spline_interpolation.hpp>
@@ -822,6 +830,28 @@ sweep::NurbsCurve<double> cubic_profile() {  // open cubic NURBS, uneven weights
 
 }  // namespace
 
+/// --write-alone: the geometry of `qmotion trajectory` or `qmotion sweep`, written by
+/// OpenCASCADE's STEP writer alone at 17 digits (an edge, or a shell of the faces).
+int write_alone(const std::string& motion, const std::string& kind, const std::string& arg,
+                const std::string& out) {
+  const auto m = io::load_motion(motion);
+  ExportOptions opt;
+  TopoDS_Shape shape;
+  if (kind == "trajectory") {
+    V3 x;
+    if (std::sscanf(arg.c_str(), "%lf,%lf,%lf", &x.x(), &x.y(), &x.z()) != 3) return 2;
+    shape = BRepBuilderAPI_MakeEdge(to_occt(trajectory_nurbs(m, x, opt))).Edge();
+  } else if (kind == "sweep") {
+    const auto faces = sweep_nurbs(m, io::read_profile(arg, m.units()), opt);
+    if (faces.size() != 1) return 2;
+    shape = BRepBuilderAPI_MakeFace(to_occt(faces.front()), 1e-7).Face();
+  } else {
+    return 2;
+  }
+  occt_write_step(shape, out, /*digits17=*/true);
+  return 0;
+}
+
 int main(int argc, char** argv) {
   // malloc as the qmotion executable sets it (cli/huge_pages.cpp), for every route alike:
   // with glibc's sliding defaults a route's time depended on the heap the routes before it
@@ -830,6 +860,8 @@ int main(int argc, char** argv) {
   mallopt(M_TOP_PAD, 16 << 20);
   mallopt(M_TRIM_THRESHOLD, 8 << 20);
   mallopt(M_MMAP_THRESHOLD, 32 << 20);
+  if (argc == 6 && std::string(argv[1]) == "--write-alone")
+    return write_alone(argv[2], argv[3], argv[4], argv[5]);
   bool smoke = false;
   int repeats = 3, resolution = 0;
   std::string out;

@@ -518,5 +518,40 @@ TEST(MotionJson, AMotionAboveTheReadersLimitsIsNotWritten) {
   EXPECT_EQ(written, read);
 }
 
+TEST(MotionJson, TheMemberScannerFindsEachValueWhateverItsStringsHold) {
+  // The fast reader cuts the file into members by brackets and quotes alone; strings holding
+  // brackets, quotes and backslashes, nesting and odd spacing must not move a cut.
+  const std::string head = R"({ "type" :"q-motion" , "basis":
+    "bezier","degree" :1,"param_range":[0,1] ,
+    "control_points": [[1,0,0,0,0,0,0,0],[1,0,0,0,0,1,0,0]])";
+  const std::string method =
+      R"(, "method": {"note": "] } \" [ { \\", "deep": {"a": [1, {"b": "]}"}, []]},
+         "form": "bezier", "empty": "", "slash": "a\\\\"}, "extra": ["{", "\\\"]"]})";
+  const std::string text = head + method;
+  const auto fast = io::parse_motion_fast(text, "s.json");
+  ASSERT_TRUE(fast.has_value());
+  const io::MotionFile dom = io::parse_motion(io::parse_json(text, "s.json", "method"), "s.json");
+  EXPECT_EQ(fast->method, dom.method);
+  EXPECT_EQ(fast->method["note"], "] } \" [ { \\");
+  EXPECT_EQ(fast->method["slash"], "a\\\\");
+  EXPECT_EQ(fast->ctrl.size(), 2u);
+  EXPECT_EQ(fast->degree, 1);
+
+  // A key with an escape: declined by the scanner, read by the full reader.
+  const std::string escaped = head + R"(, "n\u006fte": 1})";
+  EXPECT_FALSE(io::parse_motion_fast(escaped, "e.json").has_value());
+  EXPECT_EQ(io::parse_motion_text(escaped, "e.json").ctrl.size(), 2u);
+
+  // Broken structure the scanner's cuts alone would pass: each is refused by both readers.
+  for (const std::string& bad :
+       {head + R"(, "note": [1, 2}})", head + R"(, "note": "open})", head,
+        head + R"(, "note": 1 2})", head + R"(, : 1})", head + R"(,})", head + "}}"}) {
+    EXPECT_FALSE(io::parse_motion_fast(bad, "b.json").has_value()) << bad;
+    EXPECT_TRUE(throws_error([&] { io::parse_motion_text(bad, "b.json"); }, Errc::invalid_input,
+                             {"b.json"}))
+        << bad;
+  }
+}
+
 }  // namespace
 }  // namespace qmotion::test

@@ -3,11 +3,13 @@
 #include <array>
 #include <nlohmann/json.hpp>
 #include <qmotion/io/json_number.hpp>
+#include <qmotion/io/paged_text.hpp>
 #include <qmotion/io/poses.hpp>
 #include <qmotion/kernel/motion.hpp>
 #include <qmotion/kernel/motion_value.hpp>
 #include <qmotion/sweep/factors.hpp>
 #include <string>
+#include <variant>
 #include <vector>
 
 #ifdef QMOTION_WITH_CGAL
@@ -63,6 +65,12 @@ MotionFile parse_motion(const nlohmann::json& doc, const std::string& source);
 MotionFile parse_motion(nlohmann::json&& doc, const std::string& source);
 /// Reads and validates a motion file.
 MotionFile read_motion(const std::string& path);
+/// The motion file at `path` read by the fast reader (parse_motion_fast) on its paged text,
+/// whose pages go as they are read; when the fast reader declines, the file's whole text
+/// instead, for a full reader to read or word (a quaternion spline, an exact number, an
+/// error). Throws what reading the file and the checks both readers share throw.
+std::variant<MotionFile, std::string> read_motion_or_text(const std::string& path,
+                                                          bool with_method = true);
 /// The same for a motion file's text already read (`source` names it in messages).
 MotionFile parse_motion_text(const std::string& text, const std::string& source);
 /// The fast path of parse_motion_text: the file read without a DOM when it is an ordinary
@@ -71,6 +79,10 @@ MotionFile parse_motion_text(const std::string& text, const std::string& source)
 /// `with_method` false leaves MotionFile::method null (still validated as JSON): for readers
 /// of the curve alone, such as eval.
 std::optional<MotionFile> parse_motion_fast(const std::string& text, const std::string& source,
+                                            bool with_method = true);
+/// The same on a file's paged text, giving its pages back as the members are read: the
+/// text is then no longer whole (PagedText::whole reads it again for the full reader).
+std::optional<MotionFile> parse_motion_fast(PagedText& text, const std::string& source,
                                             bool with_method = true);
 
 /// The motion in double precision.
@@ -93,6 +105,10 @@ nlohmann::json motion_to_json(const kernel::QMotion<double>& m, const nlohmann::
 /// give a motion without factors and provenance. A method block that records a field
 /// malformed is refused (Errc::invalid_input naming the field, and how to regenerate).
 kernel::Motion<double> to_motion(const MotionFile& f);
+/// The same, freeing the parts of `f` the motion holds once read (the control points and
+/// the factors' rows: a lower peak); f's other members (method, input poses, units, source)
+/// stay as they were.
+kernel::Motion<double> to_motion(MotionFile&& f);
 
 /// The motion file document of a motion value (docs/formats.md): the curve, and a method block
 /// from its provenance and factors (none when it has neither). `input_poses`, when not

@@ -33,6 +33,8 @@ NurbsCurve<Scalar> to_nurbs(const kernel::BSpline<Eigen::Matrix<Scalar, 4, 1>>& 
   NurbsCurve<Scalar> c;
   c.degree = h.degree();
   c.knots = h.knots();
+  c.weights.reserve(h.ctrl().size());  // no regrowth: a 10^4-span trajectory is 7 x 10^4 poles
+  c.points.reserve(h.ctrl().size());
   for (const auto& p : h.ctrl()) {
     if (p(0) == Scalar(0))
       throw Error(Errc::numerical_failure,
