@@ -170,9 +170,9 @@ bool method_block(std::string_view raw, MotionFile& f, bool with_method,
       ok = !f.factor_rows.count(key) && value.front() == '[' &&
            control_rows(value, f.factor_rows[std::string(key)]);
     } else {
-      ok = simd::read_member(value, [&](sj::value v) {
-        return simd::build(v, f.method[std::string(key)], /*plain=*/true, depth);
-      });
+      nlohmann::json& out = f.method[std::string(key)];  // (a lambda cannot name a binding)
+      ok = simd::read_member(
+          value, [&](sj::value v) { return simd::build(v, out, /*plain=*/true, depth); });
     }
     if (!ok) return false;
     read_to(value.data() + value.size());
