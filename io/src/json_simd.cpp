@@ -22,17 +22,12 @@ using json = nlohmann::json;
 
 namespace simd {
 
-Document::Document(const std::string& text) {
+Document::Document(const std::string& text) : padded(text) {
   thread_local sj::parser shared;
   if (text.size() > kOwnParserChars) own = std::make_unique<sj::parser>();
   sj::parser& parser = own ? *own : shared;
-  // read_text_file leaves the padding simdjson reads past the end; other text is copied.
-  if (text.capacity() - text.size() >= simdjson::SIMDJSON_PADDING) {
-    ok = !parser.iterate(text).get(doc);
-  } else {
-    padded = simdjson::padded_string(text);
-    ok = !parser.iterate(padded).get(doc);
-  }
+  const std::string_view t = padded.view();
+  ok = !parser.iterate(t.data(), t.size(), t.size() + simdjson::SIMDJSON_PADDING).get(doc);
 }
 
 bool Document::at_end() {
@@ -407,9 +402,9 @@ std::size_t skip_value(std::string_view s, std::size_t i) {
   return npos;
 }
 
+/// skip_space on an index of s.
 std::size_t skip_spaces(std::string_view s, std::size_t i) {
-  while (i < s.size() && json_space(s[i])) ++i;
-  return i;
+  return static_cast<std::size_t>(skip_space(s.data() + i, s.data() + s.size()) - s.data());
 }
 
 }  // namespace

@@ -21,12 +21,25 @@ inline constexpr std::size_t kOwnParserChars = std::size_t(1) << 20;
 /// Members longer than this are read with a parser of their own (read_member).
 inline constexpr std::size_t kSharedParserChars = std::size_t(64) << 10;
 
-/// A document being read with this thread's parser (a long text: with its own): the text in place
-/// when it has simdjson's padding as spare capacity (read_text_file leaves it), else a padded copy.
-/// `ok` is false when simdjson refused the text outright.
+/// A text with simdjson's padding readable past its end: the text itself when its spare
+/// capacity holds the padding (read_text_file leaves it), else a padded copy. Slices of
+/// view() can be read in place (read_member).
+struct Padded {
+  explicit Padded(const std::string& text);  ///< text must outlive the Padded
+  Padded(const Padded&) = delete;            // view() may point into copy_
+  Padded& operator=(const Padded&) = delete;
+  std::string_view view() const { return text_; }
+
+ private:
+  simdjson::padded_string copy_;
+  std::string_view text_;
+};
+
+/// A document being read with this thread's parser (a long text: with its own), in place or
+/// from a padded copy (Padded). `ok` is false when simdjson refused the text outright.
 struct Document {
   explicit Document(const std::string& text);  ///< text must outlive the Document
-  simdjson::padded_string padded;
+  Padded padded;
   /// A parser of its own for a text above kOwnParserChars, freed with the document: the
   /// thread's parser would keep an index the size of the longest text it ever read (4 bytes
   /// a character reserved, about 5 MB touched for a 10^4-pose motion).
@@ -68,18 +81,6 @@ bool numbers(sj::value v, std::vector<Number>& out, bool lean = false);
 bool number_rows(std::string_view text, std::size_t width,
                  const std::function<bool(std::size_t, std::size_t)>& rows,
                  const std::function<Number*(std::size_t)>& row, bool lean);
-
-/// A text with simdjson's padding readable past its end: the text itself when its spare
-/// capacity holds the padding (read_text_file leaves it), else a padded copy. Slices of
-/// view() can be read in place (read_member).
-struct Padded {
-  explicit Padded(const std::string& text);  ///< text must outlive the Padded
-  std::string_view view() const { return text_; }
-
- private:
-  simdjson::padded_string copy_;
-  std::string_view text_;
-};
 
 /// One member of a JSON object as members() finds it: the key as written (no escapes) and
 /// the text of its value.

@@ -373,23 +373,22 @@ json motion_to_json(const kernel::QMotion<double>& m, const json& method,
   return motion_json(m, method, units, [](double v) { return json(v); });
 }
 
-kernel::Motion<double> to_motion(const MotionFile& f) {
+namespace {
+/// The motion of f; with `spent` (f itself), each part of f goes as soon as it is read: of a
+/// 10^4-pose motion, the control points' numbers are 5 MB and the factors' 1 MB.
+kernel::Motion<double> motion_value(const MotionFile& f, MotionFile* spent) {
   kernel::Motion<double> m(to_motion_double(f), std::nullopt, std::nullopt, f.units, f.source);
+  if (spent) std::vector<std::array<Number, 8>>().swap(spent->ctrl);
   m.factors = factors_double(f, m.curve);
+  if (spent) decltype(spent->factor_rows)().swap(spent->factor_rows);
   m.provenance = read_provenance(f, m.curve, m.factors);
   return m;
 }
+}  // namespace
 
-kernel::Motion<double> to_motion(MotionFile&& f) {
-  kernel::Motion<double> m(to_motion_double(f), std::nullopt, std::nullopt, f.units, f.source);
-  // Each part of the file goes as soon as it is read: of a 10^4-pose motion, the control
-  // points' numbers are 5 MB and the factors' 1 MB.
-  std::vector<std::array<Number, 8>>().swap(f.ctrl);
-  m.factors = factors_double(f, m.curve);
-  decltype(f.factor_rows)().swap(f.factor_rows);
-  m.provenance = read_provenance(f, m.curve, m.factors);
-  return m;
-}
+kernel::Motion<double> to_motion(const MotionFile& f) { return motion_value(f, nullptr); }
+
+kernel::Motion<double> to_motion(MotionFile&& f) { return motion_value(f, &f); }
 
 json motion_document(const kernel::Motion<double>& m, const json& input_poses) {
   return motion_to_json(m.curve, method_json(m, input_poses, [](double v) { return json(v); }),

@@ -180,19 +180,14 @@ bool method_block(std::string_view raw, MotionFile& f, bool with_method,
   return true;
 }
 
-}  // namespace
-
-namespace {
-
 /// The motion file read straight from the text: members() cuts the object into its members
 /// without indexing the text, the rows of numbers go to the scanner, and each other member is
 /// read by simdjson on its own (the index then covers one member, not the file). No DOM for
 /// the control points and knots (a 10^4-pose motion is 10^5 numbers). std::nullopt as soon as
 /// anything is unusual (a field of the wrong kind, an exact "p/q" number, invalid JSON):
 /// parse_motion then reads the file and words the message. Throws only finish_motion's
-/// errors, which both readers share.
-/// parse_motion_fast on a text with simdjson's padding past its end; read_to(p) is told that
-/// nothing before p will be read again.
+/// errors, which both readers share. `text` has simdjson's padding past its end; read_to(p)
+/// is told that nothing before p will be read again (parse_motion_fast's two forms).
 std::optional<MotionFile> parse_motion_view(std::string_view text, const std::string& source,
                                             bool with_method,
                                             const std::function<void(const char*)>& read_to) {
