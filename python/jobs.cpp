@@ -161,6 +161,26 @@ void bind_jobs(py::module_& m) {
       py::arg("units") = "", py::arg("nurbs") = false, py::arg("machine") = "",
       py::arg("feed_mode") = "", py::arg("axis_limits") = std::map<std::string, double>{},
       toolpath_doc);
+  m.def(
+      "animate",
+      [](const PyMotion& p, const std::string& path, const std::string& body, const py::object& tol,
+         double duration) {
+        AnimateOptions o;
+        o.output = path;
+        o.body = body;
+        if (!tol.is_none()) o.tol = tol.cast<double>();
+        o.duration = duration;
+        return to_python(animate(p.motion, o).report());
+      },
+      py::arg("motion"), py::arg("path"), py::arg("body") = "", py::arg("tol") = py::none(),
+      py::arg("duration") = 0.0,
+      "`qmotion animate`: the motion as a glTF 2.0 animation of body (sphere:r, box:a,b,c, "
+      "cylinder:r,h, cutter:flat|ball,D,L, cutter:bull,D,rc,L or an .stl/.obj/.ply mesh; "
+      "default a cube a tenth of the motion's extent) written to path (.glb or .gltf, metres), "
+      "with keyframes that keep every point of the body within tol (motion units; default "
+      "1e-3 of the swept space's diagonal) of the exact motion under glTF's and Blender's "
+      "interpolation, certified. Returns the report dict: keyframes, distance_bound, "
+      "measured_distance, tolerance, metres_per_unit, duration, ...");
 #ifdef QMOTION_WITH_CGAL
   m.def(
       "check_exact",

@@ -4,7 +4,9 @@
 #   --test  also installs what the test suite needs (GoogleTest, Google Benchmark,
 #           clang-format, pytest for the Python module, FreeCAD for the interop test, and
 #           clang with libclang-rt-14-dev for scripts/test-sanitized.sh: sanitizers, libFuzzer;
-#           linuxcnc-uspace for its rs274 G-code interpreter).
+#           linuxcnc-uspace for its rs274 G-code interpreter; Blender for the glTF test, and
+#           Node.js with npm (Debian's, unless a node is already on PATH), then the npm
+#           packages of tests/interop: the Khronos glTF validator, from its lock file).
 set -euo pipefail
 
 packages=(
@@ -17,7 +19,8 @@ packages=(
 )
 if [[ "${1:-}" == "--test" ]]; then
   packages+=(googletest libgtest-dev libgmock-dev libbenchmark-dev clang-format git python3 python3-pytest freecad-python3
-    clang libclang-rt-14-dev linuxcnc-uspace time)
+    clang libclang-rt-14-dev linuxcnc-uspace time blender)
+  command -v npm >/dev/null || packages+=(nodejs npm)
 fi
 
 missing=()
@@ -26,11 +29,18 @@ for p in "${packages[@]}"; do
 done
 if ((${#missing[@]} == 0)); then
   echo "install-deps: all ${#packages[@]} packages present"
-  exit 0
+else
+  sudo=""
+  if [[ $(id -u) -ne 0 ]]; then sudo="sudo"; fi
+  echo "install-deps: installing ${missing[*]}"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-sudo=""
-if [[ $(id -u) -ne 0 ]]; then sudo="sudo"; fi
-echo "install-deps: installing ${missing[*]}"
-$sudo apt-get update -qq
-DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+if [[ "${1:-}" == "--test" ]]; then
+  interop="$(cd "$(dirname "$0")/../tests/interop" && pwd)"
+  if [[ ! -d "$interop/node_modules/gltf-validator" ]]; then
+    echo "install-deps: npm ci in tests/interop (the glTF validator)"
+    (cd "$interop" && npm ci --no-audit --no-fund --loglevel=error)
+  fi
+fi

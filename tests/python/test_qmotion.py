@@ -249,6 +249,29 @@ def save_q(q, tmp_path):
     return path
 
 
+def test_animate_is_the_clis(tmp_path):
+    m = qmotion.interpolate(data("helix_10.json"))
+    motion = tmp_path / "m.json"
+    m.save(str(motion))
+    ours = qmotion.animate(m, str(tmp_path / "a.glb"), body="cutter:ball,6,30", tol=0.01)
+    r = cli("animate", motion, "--body", "cutter:ball,6,30", "--tol", "0.01", "-o", tmp_path / "b.glb")
+    assert r.returncode == 0, r.stderr
+    theirs = json.loads(r.stdout)
+    skip = ("output", "seconds")
+    assert {k: v for k, v in ours.items() if k not in skip} == {k: v for k, v in theirs.items() if k not in skip}
+    assert ours["distance_bound"] <= 0.01 and ours["measured_distance"] <= ours["distance_bound"]
+    assert ours["metres_per_unit"] == 0.001
+    # The same keyframes and mesh: the binary chunks are equal byte for byte.
+    def binary_chunk(path):
+        f = open(path, "rb").read()
+        n = int.from_bytes(f[12:16], "little")
+        return f[28 + n:]
+    assert binary_chunk(tmp_path / "a.glb") == binary_chunk(tmp_path / "b.glb")
+    with pytest.raises(ValueError, match="tolerance must be a positive"):
+        qmotion.animate(m, str(tmp_path / "c.glb"), tol=0)
+    assert not (tmp_path / "c.glb").exists()
+
+
 def test_toolpath_is_the_clis(tmp_path):
     m = qmotion.interpolate(data("poses/helix_40.json"))
     motion = tmp_path / "m.json"

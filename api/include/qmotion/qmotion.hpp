@@ -4,6 +4,7 @@
 // qmotion::io.
 #pragma once
 
+#include <qmotion/api/animate.hpp>
 #include <qmotion/api/compare.hpp>
 #include <qmotion/api/demo.hpp>
 #include <qmotion/api/evaluate.hpp>

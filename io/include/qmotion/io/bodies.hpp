@@ -1,0 +1,20 @@
+// <qmotion/io/bodies.hpp>: bodies of the moving space given as text or as a mesh file
+// (docs/formats.md, "Bodies").
+#pragma once
+#include <qmotion/sweep/body.hpp>
+#include <string>
+
+namespace qmotion::io {
+
+/// The body named by `spec`: `sphere:r`, `box:a,b,c`, `cylinder:r,h`, `cutter:flat,D,L`,
+/// `cutter:ball,D,L`, `cutter:bull,D,rc,L`, or a triangle mesh file (.stl binary or ASCII,
+/// .obj, .ply ASCII or binary little-endian) in the motion's unit. Errc::invalid_input naming
+/// the body and what is wrong: an unknown kind, a bad or non-positive size, rc > D/2, and a
+/// mesh that is empty, open, non-manifold or inconsistently oriented.
+sweep::Body read_body(const std::string& spec);
+
+/// Refuses (Errc::invalid_input naming `label`) a mesh that is not closed, 2-manifold and
+/// consistently oriented: every directed edge must occur once and its reverse once.
+void require_closed_oriented(const sweep::TriangleMesh& m, const std::string& label);
+
+}  // namespace qmotion::io

@@ -1,0 +1,245 @@
+// <qmotion/sweep/body.hpp>: solids of the moving space (docs/formats.md, "Bodies"): the
+// sphere, box and cylinder, the CAM cutters with their tip at the moving origin and their
+// axis along moving +z, and closed triangle meshes; their triangulations and their radius
+// about the moving origin.
+#pragma once
+#include <Eigen/Core>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <qmotion/kernel/error.hpp>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace qmotion::sweep {
+
+namespace detail {
+/// A size in a message: 6 significant digits.
+inline std::string size_text(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+
+}  // namespace detail
+
+/// A closed triangle mesh: counter-clockwise seen from outside.
+struct TriangleMesh {
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<std::array<int, 3>> triangles;
+};
+
+/// A body of the moving space. Sizes are in the motion's length unit.
+struct Body {
+  enum class Kind { sphere, box, cylinder, flat_cutter, ball_cutter, bull_cutter, mesh };
+  Kind kind = Kind::box;
+  double r = 0;                 ///< sphere and cylinder radius
+  double a = 0, b = 0, c = 0;   ///< box edges along moving x, y, z
+  double h = 0;                 ///< cylinder height (moving z from 0 to h)
+  double D = 0, L = 0, rc = 0;  ///< cutters: diameter, length, corner radius (bull)
+  TriangleMesh mesh;            ///< Kind::mesh, in the moving space
+  std::string spec;             ///< as given, for messages and reports
+
+  static Body box(double a, double b, double c, std::string spec = {}) {
+    Body x;
+    x.kind = Kind::box;
+    x.a = a;
+    x.b = b;
+    x.c = c;
+    x.spec = spec.empty() ? "box:" + detail::size_text(a) + "," + detail::size_text(b) + "," +
+                                detail::size_text(c)
+                          : std::move(spec);
+    return x;
+  }
+};
+
+namespace detail {
+
+inline void require_positive(const Body& body, double v, const char* what) {
+  if (!(v > 0) || !std::isfinite(v))
+    throw Error(Errc::invalid_input, "body '" + body.spec + "': " + what +
+                                         " must be a positive finite length, got " + size_text(v));
+}
+
+/// The surface of revolution about z of the profile (radius, z), from a point on the axis
+/// to a point on the axis, with n sectors: closed, outward when the profile runs from the
+/// bottom pole up to the top pole.
+inline TriangleMesh revolve(const std::vector<std::pair<double, double>>& profile, int n) {
+  TriangleMesh m;
+  const double pi = 3.14159265358979323846;
+  // Vertex rings: one vertex for a point on the axis, n otherwise.
+  std::vector<int> first;
+  for (const auto& [r, z] : profile) {
+    first.push_back(static_cast<int>(m.vertices.size()));
+    if (r == 0) {
+      m.vertices.emplace_back(0, 0, z);
+      continue;
+    }
+    for (int k = 0; k < n; ++k) {
+      const double phi = 2 * pi * k / n;
+      m.vertices.emplace_back(r * std::cos(phi), r * std::sin(phi), z);
+    }
+  }
+  for (std::size_t i = 0; i + 1 < profile.size(); ++i) {
+    const bool p0 = profile[i].first == 0, p1 = profile[i + 1].first == 0;
+    const int f0 = first[i], f1 = first[i + 1];
+    for (int k = 0; k < n; ++k) {
+      const int k1 = (k + 1) % n;
+      if (p0 && !p1) {
+        m.triangles.push_back({f0, f1 + k1, f1 + k});
+      } else if (!p0 && p1) {
+        m.triangles.push_back({f0 + k, f0 + k1, f1});
+      } else if (!p0 && !p1) {
+        m.triangles.push_back({f0 + k, f1 + k1, f1 + k});
+        m.triangles.push_back({f0 + k, f0 + k1, f1 + k1});
+      }
+    }
+  }
+  return m;
+}
+
+/// Sectors of a circle of radius r whose inscribed polygon stays within tol of it.
+inline int sectors(double r, double tol) {
+  const double pi = 3.14159265358979323846;
+  if (!(tol < r)) return 8;
+  const double n = pi / std::acos(1 - tol / r);
+  return std::clamp(static_cast<int>(std::ceil(n)), 8, 256);
+}
+
+/// A quarter arc of radius rho about (r0, z0) from angle a0 to a1 (radians, from +r).
+inline void arc(std::vector<std::pair<double, double>>& p, double r0, double z0, double rho,
+                double a0, double a1, int n) {
+  for (int k = 1; k <= n; ++k) {
+    const double a = a0 + (a1 - a0) * k / n;
+    p.emplace_back(std::max(0.0, r0 + rho * std::cos(a)), z0 + rho * std::sin(a));
+  }
+}
+
+}  // namespace detail
+
+/// Refuses (Errc::invalid_input, naming the body) a size that is not a positive finite
+/// length, a corner radius above D/2, a cutter shorter than its corner, and a mesh that
+/// is not closed, 2-manifold and consistently oriented.
+inline void validate(const Body& body) {
+  using K = Body::Kind;
+  switch (body.kind) {
+    case K::sphere:
+      detail::require_positive(body, body.r, "the radius r");
+      return;
+    case K::box:
+      detail::require_positive(body, body.a, "the edge a");
+      detail::require_positive(body, body.b, "the edge b");
+      detail::require_positive(body, body.c, "the edge c");
+      return;
+    case K::cylinder:
+      detail::require_positive(body, body.r, "the radius r");
+      detail::require_positive(body, body.h, "the height h");
+      return;
+    case K::flat_cutter:
+    case K::ball_cutter:
+    case K::bull_cutter: {
+      detail::require_positive(body, body.D, "the diameter D");
+      detail::require_positive(body, body.L, "the length L");
+      const double corner = body.kind == K::ball_cutter   ? body.D / 2
+                            : body.kind == K::bull_cutter ? body.rc
+                                                          : 0.0;
+      if (body.kind == K::bull_cutter) {
+        detail::require_positive(body, body.rc, "the corner radius rc");
+        if (body.rc > body.D / 2)
+          throw Error(Errc::invalid_input, "body '" + body.spec + "': the corner radius rc = " +
+                                               detail::size_text(body.rc) +
+                                               " exceeds D/2 = " + detail::size_text(body.D / 2));
+      }
+      if (body.L < corner)
+        throw Error(Errc::invalid_input,
+                    "body '" + body.spec + "': the length L = " + detail::size_text(body.L) +
+                        " is shorter than the corner radius " + detail::size_text(corner));
+      return;
+    }
+    case K::mesh:
+      return;  // checked where it is read (io::read_body)
+  }
+}
+
+/// The body's boundary as a closed triangle mesh whose vertices lie on it, within tol of it
+/// (tol > 0; the mesh itself for Kind::mesh).
+inline TriangleMesh triangulate(const Body& body, double tol) {
+  using K = Body::Kind;
+  validate(body);
+  const double pi = 3.14159265358979323846;
+  std::vector<std::pair<double, double>> p;  // (radius, z) from the bottom pole up
+  switch (body.kind) {
+    case K::mesh:
+      return body.mesh;
+    case K::box: {
+      TriangleMesh m;
+      for (int k = 0; k < 8; ++k)
+        m.vertices.emplace_back((k & 1 ? 0.5 : -0.5) * body.a, (k & 2 ? 0.5 : -0.5) * body.b,
+                                (k & 4 ? 0.5 : -0.5) * body.c);
+      // Two triangles per face, counter-clockwise from outside.
+      const int q[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                           {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+      for (const auto& f : q) {
+        m.triangles.push_back({f[0], f[1], f[2]});
+        m.triangles.push_back({f[0], f[2], f[3]});
+      }
+      return m;
+    }
+    case K::sphere: {
+      const int n = detail::sectors(body.r, tol);
+      p.emplace_back(0.0, -body.r);
+      detail::arc(p, 0, 0, body.r, -pi / 2, pi / 2, std::max(4, n / 2));
+      p.back().first = 0;
+      return detail::revolve(p, n);
+    }
+    case K::cylinder: {
+      const int n = detail::sectors(body.r, tol);
+      p = {{0.0, 0.0}, {body.r, 0.0}, {body.r, body.h}, {0.0, body.h}};
+      return detail::revolve(p, n);
+    }
+    case K::flat_cutter:
+    case K::ball_cutter:
+    case K::bull_cutter: {
+      const double R = body.D / 2;
+      const double rc = body.kind == K::flat_cutter   ? 0.0
+                        : body.kind == K::ball_cutter ? R
+                                                      : body.rc;
+      const int n = detail::sectors(R, tol);
+      p.emplace_back(0.0, 0.0);
+      if (rc < R) p.emplace_back(R - rc, 0.0);
+      if (rc > 0) detail::arc(p, R - rc, rc, rc, -pi / 2, 0, std::max(2, n / 4));
+      if (body.L > rc) p.emplace_back(R, body.L);
+      p.emplace_back(0.0, body.L);
+      return detail::revolve(p, n);
+    }
+  }
+  return {};
+}
+
+/// The largest distance of a point of the body from the moving origin: the radius of every
+/// point's lever arm under the motion's rotation.
+inline double radius(const Body& body) {
+  using K = Body::Kind;
+  switch (body.kind) {
+    case K::sphere:
+      return body.r;
+    case K::box:
+      return 0.5 * std::sqrt(body.a * body.a + body.b * body.b + body.c * body.c);
+    case K::cylinder:
+      return std::hypot(body.r, body.h);
+    case K::flat_cutter:
+    case K::ball_cutter:
+    case K::bull_cutter:
+      return std::hypot(body.D / 2, body.L);
+    case K::mesh: {
+      double r = 0;
+      for (const auto& v : body.mesh.vertices) r = std::max(r, v.norm());
+      return r;
+    }
+  }
+  return 0;
+}
+
+}  // namespace qmotion::sweep
