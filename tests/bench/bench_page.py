@@ -23,7 +23,7 @@ import subprocess
 import sys
 
 PROGRAMS = ["bench_kernel", "bench_interpolation", "bench_spline", "bench_qspline",
-            "bench_sweep", "bench_toolpath", "bench_io", "bench_fit"]
+            "bench_sweep", "bench_toolpath", "bench_io", "bench_fit", "bench_keyframes"]
 
 # (qmotion's benchmark, the peer beside it, what both do); matched argument for argument.
 PEERS = [
@@ -42,6 +42,9 @@ PEERS = [
     ("BM_MachineToolpath", "BM_WorkpieceToolpath",
      "G-code on a table A/C machine, certified for its own interpolation, vs 3-axis G-code "
      "certified on the workpiece alone (tilt_150)"),
+    ("BM_Keyframes", "BM_UniformKeyframes",
+     "glTF keyframes within a certified tolerance: the greedy placement vs finding the fewest "
+     "uniform keys that hold the same certificate (the tables below give both key counts)"),
     ("BM_WriteTrajectoryJson", "BM_OfstreamSameTrajectoryBytes",
      "writing a trajectory: qmotion vs an ofstream writing the same bytes"),
 ]

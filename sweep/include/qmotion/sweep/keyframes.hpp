@@ -148,7 +148,10 @@ class KeyframeBound {
   double part_bound(const kernel::Bernstein<Eigen::Matrix4d>& piece, double u0, double u1,
                     const Eigen::Matrix<double, 3, 4>& l0,
                     const Eigen::Matrix<double, 3, 4>& l1) const {
-    const auto n = kernel::restrict_to(piece, u0, u1);
+    // The piece on [u0, u1] by two de Casteljau splits (O(d^2); blossoms would take O(d^3)).
+    auto n = piece;
+    if (u0 > n.a()) n = kernel::subdivide(n, u0).second;
+    if (u1 < n.b()) n = kernel::subdivide(n, u1).first;
     const int d = n.degree() + 1;  // of N elevated once, and of w L
     double wmin = HUGE_VAL, dmax = 0, scale = 0;
     for (int k = 0; k <= d; ++k) {
