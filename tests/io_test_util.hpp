@@ -1,4 +1,5 @@
-// tests/io_test_util.hpp: test data folder and error-message checks for io tests.
+// tests/io_test_util.hpp: test data folder, scratch files, error-message checks and mesh
+// volumes for the tests of io and of what reads files.
 #pragma once
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -47,6 +48,18 @@ inline ::testing::AssertionResult throws_error(const std::function<void()>& f, E
     return ::testing::AssertionSuccess();
   }
   return ::testing::AssertionFailure() << "no qmotion::Error thrown";
+}
+
+/// The volume a closed, outward-oriented triangle mesh encloses (divergence theorem); any
+/// mesh with `vertices` (Eigen 3-vectors) and `triangles` (three indices each).
+template <typename Mesh>
+double enclosed_volume(const Mesh& m) {
+  double v = 0;
+  for (const auto& t : m.triangles)
+    v += m.vertices[static_cast<std::size_t>(t[0])].dot(
+        m.vertices[static_cast<std::size_t>(t[1])].cross(
+            m.vertices[static_cast<std::size_t>(t[2])]));
+  return v / 6;
 }
 
 }  // namespace qmotion::test

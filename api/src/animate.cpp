@@ -100,10 +100,9 @@ Animation animate(const Motion& motion, const AnimateOptions& o) {
   const auto [box, far] = sampled_extent(motion);
   const double extent = box.diagonal().norm();
 
+  const double side = extent > 0 ? extent / 10 : 1;  // of the default cube
   const sweep::Body body =
-      o.body.empty() ? sweep::Body::box(extent > 0 ? extent / 10 : 1, extent > 0 ? extent / 10 : 1,
-                                        extent > 0 ? extent / 10 : 1)
-                     : io::read_body(o.body);
+      o.body.empty() ? sweep::Body::box(side, side, side) : io::read_body(o.body);
   out.body = body.spec;
   const sweep::TriangleMesh mesh = sweep::triangulate(body, 1e-3 * sweep::radius(body));
 
@@ -122,8 +121,7 @@ Animation animate(const Motion& motion, const AnimateOptions& o) {
     g.triangles.push_back({static_cast<std::uint32_t>(t[0]), static_cast<std::uint32_t>(t[1]),
                            static_cast<std::uint32_t>(t[2])});
   out.radius *= 1 + 1e-12;
-  out.tolerance = o.tol ? *o.tol : 1e-3 * (extent + 2 * out.radius);
-  if (!(out.tolerance > 0)) out.tolerance = 1e-3;
+  out.tolerance = o.tol ? *o.tol : 1e-3 * (extent + 2 * out.radius);  // radius > 0: positive
 
   // 32-bit floats hold a position to 2^-24 of its size and a unit quaternion to 2^-24: below
   // a few of those no key can be certified.

@@ -5,6 +5,7 @@
 #include <qmotion/io/atomic_file.hpp>
 #include <qmotion/io/bodies.hpp>
 #include <qmotion/io/json_number.hpp>
+#include <qmotion/io/point_text.hpp>
 #include <qmotion/kernel/error.hpp>
 #include <sstream>
 #include <utility>
@@ -14,15 +15,6 @@ namespace {
 
 using sweep::Body;
 using sweep::TriangleMesh;
-
-std::vector<double> sizes(const std::string& text, const std::string& spec) {
-  std::vector<double> v;
-  std::stringstream ss(text);
-  std::string cell;
-  while (std::getline(ss, cell, ','))
-    v.push_back(parse_number_text(cell, "body '" + spec + "'").value);
-  return v;
-}
 
 void expect_count(const std::vector<double>& v, std::size_t n, const std::string& spec,
                   const char* form) {
@@ -324,7 +316,7 @@ Body read_body(const std::string& spec) {
                     "': unknown body (expected sphere:r, box:a,b,c, cylinder:r,h, "
                     "cutter:flat,D,L, cutter:ball,D,L, cutter:bull,D,rc,L, or an .stl, .obj or "
                     ".ply mesh file)");
-  const auto v = sizes(numbers, spec);
+  const auto v = parse_numbers(numbers, "body '" + spec + "'");
   expect_count(v, form->sizes.size(), spec, form->usage);
   b.kind = form->kind;
   for (std::size_t i = 0; i < v.size(); ++i) b.*(form->sizes[i]) = v[i];

@@ -4,6 +4,7 @@
 #include <qmotion/io/json_number.hpp>
 #include <qmotion/io/nurbs_json.hpp>
 #include <qmotion/io/occt.hpp>
+#include <qmotion/io/point_text.hpp>
 #include <qmotion/io/profiles.hpp>
 #include <qmotion/kernel/error.hpp>
 #include <qmotion/sweep/profiles.hpp>
@@ -14,10 +15,7 @@ namespace qmotion::io {
 namespace {
 
 std::vector<double> numbers(const std::string& text, std::size_t count, const std::string& where) {
-  std::vector<double> v;
-  std::stringstream ss(text);
-  std::string cell;
-  while (std::getline(ss, cell, ',')) v.push_back(parse_number_text(cell, where).value);
+  std::vector<double> v = parse_numbers(text, where);
   if (v.size() != count)
     throw Error(Errc::invalid_input, where + ": expected " + std::to_string(count) +
                                          " comma-separated numbers, found '" + text + "'");

@@ -20,6 +20,8 @@ import struct
 import subprocess
 import sys
 
+import clients
+
 
 def read_glb(path):
     with open(path, "rb") as f:
@@ -55,12 +57,7 @@ def main():
     max_intervals = int(sys.argv[7]) if len(sys.argv) > 7 else 60
     blender = os.environ.get("QMOTION_BLENDER", "blender")
     if not shutil.which(blender):
-        if os.environ.get("QMOTION_REAL_CLIENTS") == "OFF":
-            print("Blender (%s) is not installed; QMOTION_REAL_CLIENTS=OFF: skipped" % blender)
-            return 77
-        print("Blender (%s) is not installed: install Debian's blender (scripts/install-deps.sh "
-              "--test), or configure with -DQMOTION_REAL_CLIENTS=OFF to turn this test off" % blender)
-        return 1
+        return clients.missing("Blender (%s)" % blender, "Debian's blender")
     os.makedirs(work, exist_ok=True)
     motion = os.path.join(work, "motion.json")
     make = ([qmotion, "interpolate", poses, "-o", motion] if kind == "rational" else

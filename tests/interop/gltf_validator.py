@@ -13,19 +13,16 @@ import shutil
 import subprocess
 import sys
 
+import clients
+
 
 def main():
     qmotion, data, work = sys.argv[1:4]
     here = os.path.dirname(os.path.abspath(__file__))
     node = shutil.which(os.environ.get("QMOTION_NODE", "node"))
     if not node or not os.path.isdir(os.path.join(here, "node_modules", "gltf-validator")):
-        if os.environ.get("QMOTION_REAL_CLIENTS") == "OFF":
-            print("Node.js or the npm gltf-validator is missing; QMOTION_REAL_CLIENTS=OFF: skipped")
-            return 77
-        print("Node.js or the npm package gltf-validator is missing: run scripts/install-deps.sh "
-              "--test (Debian's nodejs and npm, then npm ci in tests/interop), or configure with "
-              "-DQMOTION_REAL_CLIENTS=OFF to turn this test off")
-        return 1
+        return clients.missing("Node.js or the npm package gltf-validator",
+                               "Debian's nodejs and npm, then npm ci in tests/interop")
     os.makedirs(work, exist_ok=True)
     rational = os.path.join(work, "rational.json")
     spline = os.path.join(work, "kks.json")

@@ -8,6 +8,8 @@
 #include <qmotion/io/bodies.hpp>
 #include <qmotion/io/mesh.hpp>
 
+#include "io_test_util.hpp"
+
 namespace qmotion {
 namespace {
 
@@ -20,27 +22,18 @@ io::Mesh as_io_mesh(const sweep::TriangleMesh& m) {
   return out;
 }
 
-double volume(const sweep::TriangleMesh& m) {
-  double v = 0;
-  for (const auto& t : m.triangles)
-    v += m.vertices[static_cast<std::size_t>(t[0])].dot(
-        m.vertices[static_cast<std::size_t>(t[1])].cross(
-            m.vertices[static_cast<std::size_t>(t[2])]));
-  return v / 6;
-}
-
 TEST(Bodies, MeshFilesReadBackClosedWithTheirVolume) {
   const auto cyl = sweep::triangulate(io::read_body("cylinder:2,5"), 1e-2);
-  const std::string dir = fs::temp_directory_path().string();
   for (const char* name : {"b.stl", "a.stl", "b.obj", "b.ply", "a.ply"}) {
     SCOPED_TRACE(name);
-    const std::string path = dir + "/qmotion_body_" + name;
+    const std::string path = test::scratch_path("bodies", name).string();
     io::write_mesh(path, as_io_mesh(cyl), name[0] == 'a');
     const sweep::Body b = io::read_body(path);
     EXPECT_EQ(b.kind, sweep::Body::Kind::mesh);
     EXPECT_EQ(b.mesh.vertices.size(), cyl.vertices.size());
     EXPECT_EQ(b.mesh.triangles.size(), cyl.triangles.size());
-    EXPECT_NEAR(volume(b.mesh), volume(cyl), 1e-5 * volume(cyl));  // STL holds floats
+    EXPECT_NEAR(test::enclosed_volume(b.mesh), test::enclosed_volume(cyl),
+                1e-5 * test::enclosed_volume(cyl));  // STL holds floats
     EXPECT_NEAR(sweep::radius(b), sweep::radius(io::read_body("cylinder:2,5")), 1e-2);
     fs::remove(path);
   }
@@ -48,18 +41,11 @@ TEST(Bodies, MeshFilesReadBackClosedWithTheirVolume) {
 
 TEST(Bodies, OpenOrInconsistentMeshesAreRefused) {
   const auto box = sweep::triangulate(io::read_body("box:1,1,1"), 1e-2);
-  const std::string dir = fs::temp_directory_path().string();
   auto refused = [&](const std::string& name, const sweep::TriangleMesh& m, const char* why) {
-    const std::string path = dir + "/qmotion_body_" + name;
+    const std::string path = test::scratch_path("bodies", name).string();
     io::write_mesh(path, as_io_mesh(m), true);
-    try {
-      io::read_body(path);
-      ADD_FAILURE() << name << " accepted";
-    } catch (const Error& e) {
-      EXPECT_EQ(e.code(), Errc::invalid_input);
-      EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
-      EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
-    }
+    EXPECT_TRUE(test::throws_error([&] { io::read_body(path); }, Errc::invalid_input, {path, why}))
+        << name;
     fs::remove(path);
   };
   auto open = box;
@@ -71,9 +57,10 @@ TEST(Bodies, OpenOrInconsistentMeshesAreRefused) {
   auto doubled = box;  // two boxes sharing an edge's worth of faces: a non-manifold edge
   doubled.triangles.insert(doubled.triangles.end(), box.triangles.begin(), box.triangles.end());
   refused("doubled.obj", doubled, "oriented");
-  std::ofstream(dir + "/qmotion_body_empty.stl") << "solid x\nendsolid x\n";
-  EXPECT_THROW(io::read_body(dir + "/qmotion_body_empty.stl"), Error);
-  fs::remove(dir + "/qmotion_body_empty.stl");
+  const std::string empty = test::scratch_path("bodies", "empty.stl").string();
+  std::ofstream(empty) << "solid x\nendsolid x\n";
+  EXPECT_THROW(io::read_body(empty), Error);
+  fs::remove(empty);
 }
 
 }  // namespace

@@ -11,6 +11,8 @@
 #include <qmotion/kernel/error.hpp>
 #include <sstream>
 
+#include "io_test_util.hpp"
+
 namespace qmotion {
 namespace {
 
@@ -87,7 +89,7 @@ void check_content(const nlohmann::json& g, const std::string& bin, const io::Gl
 }
 
 TEST(Gltf, BinaryHoldsTheChunksAndTheNumbersAsGiven) {
-  const std::string path = (fs::temp_directory_path() / "qmotion_gltf_test.glb").string();
+  const std::string path = test::scratch_path("gltf", "animation.glb").string();
   const auto a = sample();
   io::write_gltf(path, a);
   const std::string f = slurp(path);
@@ -108,7 +110,7 @@ TEST(Gltf, BinaryHoldsTheChunksAndTheNumbersAsGiven) {
 }
 
 TEST(Gltf, TextInlinesTheBufferAsBase64) {
-  const std::string path = (fs::temp_directory_path() / "qmotion_gltf_test.gltf").string();
+  const std::string path = test::scratch_path("gltf", "animation.gltf").string();
   const auto a = sample();
   io::write_gltf(path, a);
   const auto g = nlohmann::json::parse(slurp(path));
@@ -134,17 +136,11 @@ TEST(Gltf, TextInlinesTheBufferAsBase64) {
 }
 
 TEST(Gltf, RefusalsWriteNothing) {
-  const std::string dir = fs::temp_directory_path().string();
   auto refused = [&](const std::string& name, const io::GltfAnimation& a) {
-    const std::string path = dir + "/" + name;
+    const std::string path = test::scratch_path("gltf", name).string();
     fs::remove(path);
-    try {
-      io::write_gltf(path, a);
-      ADD_FAILURE() << name << " written";
-    } catch (const Error& e) {
-      EXPECT_EQ(e.code(), Errc::invalid_input);
-      EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
-    }
+    EXPECT_TRUE(test::throws_error([&] { io::write_gltf(path, a); }, Errc::invalid_input, {name}))
+        << name;
     EXPECT_FALSE(fs::exists(path));
   };
   refused("qmotion_gltf_test.fbx", sample());

@@ -6,20 +6,12 @@
 #include <qmotion/io/bodies.hpp>
 #include <qmotion/sweep/body.hpp>
 
+#include "io_test_util.hpp"
+
 namespace qmotion {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-
-double signed_volume(const sweep::TriangleMesh& m) {
-  double v = 0;
-  for (const auto& t : m.triangles)
-    v += m.vertices[static_cast<std::size_t>(t[0])].dot(
-             m.vertices[static_cast<std::size_t>(t[1])].cross(
-                 m.vertices[static_cast<std::size_t>(t[2])])) /
-         6;
-  return v;
-}
 
 struct Case {
   const char* spec;
@@ -46,7 +38,7 @@ TEST(Body, TriangulationsAreClosedOrientedAndApproachTheVolume) {
     for (double tol : {1e-2, 1e-3}) {
       const auto m = sweep::triangulate(body, tol);
       EXPECT_NO_THROW(io::require_closed_oriented(m, c.spec));
-      const double v = signed_volume(m);
+      const double v = test::enclosed_volume(m);
       // Inscribed: never more than the body, and within the tolerance times its area.
       EXPECT_LE(v, c.volume * (1 + 1e-12));
       EXPECT_GT(v, c.volume * (1 - 40 * tol));
@@ -80,13 +72,8 @@ TEST(Body, BadSizesAreRefusedNamingTheBody) {
   for (const char* spec : {"sphere:0", "sphere:-1", "box:1,0,1", "box:1,2", "cylinder:1,-2",
                            "cutter:flat,0,10", "cutter:bull,6,4,10", "cutter:ball,6,2",
                            "cutter:taper,6,10", "blob:3", "sphere:x", "sphere:inf"}) {
-    try {
-      io::read_body(spec);
-      ADD_FAILURE() << spec << " accepted";
-    } catch (const Error& e) {
-      EXPECT_EQ(e.code(), Errc::invalid_input) << spec;
-      EXPECT_NE(std::string(e.what()).find(spec), std::string::npos) << e.what();
-    }
+    EXPECT_TRUE(test::throws_error([&] { io::read_body(spec); }, Errc::invalid_input, {spec}))
+        << spec;
   }
 }
 
