@@ -181,6 +181,25 @@ void bind_jobs(py::module_& m) {
       "1e-3 of the swept space's diagonal) of the exact motion under glTF's and Blender's "
       "interpolation, certified. Returns the report dict: keyframes, distance_bound, "
       "measured_distance, tolerance, metres_per_unit, duration, ...");
+  m.def(
+      "view",
+      [](const PyMotion& p, const std::string& path, const std::string& profile,
+         const std::string& body, const py::object& points) {
+        ViewOptions o;
+        o.output = path;
+        o.profile = profile;
+        o.body = body;
+        if (!points.is_none())
+          for (const auto& x : points) o.points.push_back(vec3(x, "points"));
+        return to_python(view(p.motion, o).report());
+      },
+      py::arg("motion"), py::arg("path"), py::arg("profile") = "", py::arg("body") = "",
+      py::arg("points") = py::none(),
+      "`qmotion view`: one self-contained HTML page (no network, no server) at path that "
+      "animates the motion (a q-motion) with its key poses, the trajectories of points "
+      "(default the origin), the exact sweep of profile and the moving body; the kernel runs "
+      "in the page (WebAssembly) and interpolates again when a pose is edited. Returns the "
+      "report dict: bytes, wasm_bytes, poses, editable, method, ...");
 #ifdef QMOTION_WITH_CGAL
   m.def(
       "check_exact",

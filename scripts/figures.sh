@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Regenerates the README's figures (docs/figures/*.svg) with a built qmotion.
+# Regenerates the README's figures (docs/figures/*.svg) with a built qmotion, and the
+# viewer's screenshot (docs/figures/viewer.png) taken by its test in headless Chromium.
 # Usage: scripts/figures.sh [QMOTION]   (default build/qmotion)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -23,4 +24,7 @@ poses="$root/examples/data/five_positions.json"
 "$q" qspline "$poses" --scheme quartic -o quartic.json
 "$q" plot elliptic.json --compare affine.json --compare quartic.json --quantity angular-speed \
   -o "$root/docs/figures/angular_speed.svg"
+# The page of `qmotion view` in headless Chromium, as interop.viewer sees it.
+python3 "$root/tests/interop/viewer.py" "$q" "$root/tests/data" "$tmp/viewer" \
+  --screenshot "$root/docs/figures/viewer.png" > /dev/null
 echo "figures: wrote $(ls "$root"/docs/figures | tr '\n' ' ')"

@@ -40,18 +40,6 @@ InterpolatedMotion finish(kernel::Motion<Scalar> m, const std::string& param, co
   return out;
 }
 
-template <typename Scalar>
-kernel::Motion<Scalar> run(const std::vector<kernel::Pose<Scalar>>& poses,
-                           const std::vector<Scalar>& t, kernel::Form form,
-                           const kernel::InterpolationOptions& opt,
-                           const kernel::SplineOptions& sopt) {
-  if (form == kernel::Form::bezier) return kernel::interpolate_bezier(poses, t, opt);
-  if constexpr (!kernel::is_exact_v<Scalar>)
-    if (form == kernel::Form::c1)
-      return kernel::interpolate_c1(poses, t, sopt.translation, sopt.max_residual);
-  return kernel::interpolate_bspline(poses, t, sopt);
-}
-
 /// The options of `interpolate` checked and resolved against the poses, with the
 /// parameters of the rule in double.
 struct Resolved {
@@ -154,7 +142,7 @@ kernel::Motion<kernel::Rational> run_exact(const PoseSet& set, const Resolved& r
     for (std::size_t i = 0; i < count; ++i)
       te[i] =
           kernel::Rational(static_cast<long>(i)) / kernel::Rational(static_cast<long>(count - 1));
-  auto m = run(poses_e, te, r.form, r.opt, r.sopt);
+  auto m = kernel::interpolate(poses_e, te, r.form, r.opt, r.sopt);
   m.units = set.units;
   m.provenance->param = kernel::to_string(r.rule);
   return m;
@@ -197,7 +185,7 @@ InterpolatedMotion interpolate(const PoseSet& set, const InterpolateOptions& arg
                 "--exact: this build has no exact arithmetic (QMOTION_WITH_CGAL=OFF)");
 #endif
   }
-  return finish(run(to_poses_double(set), r.t, r.form, r.opt, r.sopt), rule, set);
+  return finish(kernel::interpolate(to_poses_double(set), r.t, r.form, r.opt, r.sopt), rule, set);
 }
 
 json InterpolatedMotion::document() const {

@@ -9,8 +9,11 @@
 #include <qmotion/kernel/error.hpp>
 #include <qmotion/render/canvas.hpp>
 
+#include "drawing.hpp"
+
 namespace qmotion::render {
 using namespace io;  // NOLINT: the formats this call reads and writes
+using detail::escape_xml;
 
 namespace {
 
@@ -21,7 +24,25 @@ std::string px(double v) {
   return buf;
 }
 
-std::string escape_xml(const std::string& s) {
+std::string style_attributes(const Style& s) {
+  std::string a = s.cls.empty() ? std::string() : " class=\"" + escape_xml(s.cls) + "\"";
+  a += " fill=\"" + (s.fill ? s.fill->hex() : std::string("none")) + "\"";
+  if (s.fill && s.opacity < 1) a += " fill-opacity=\"" + px(s.opacity) + "\"";
+  if (s.stroke) {
+    a += " stroke=\"" + s.stroke->hex() + "\" stroke-width=\"" + px(s.width) +
+         "\" stroke-linejoin=\"round\" stroke-linecap=\"round\"";
+    if (!s.dash.empty()) {
+      a += " stroke-dasharray=\"";
+      for (std::size_t i = 0; i < s.dash.size(); ++i) a += (i ? "," : "") + px(s.dash[i]);
+      a += "\"";
+    }
+  }
+  return a;
+}
+
+}  // namespace
+
+std::string detail::escape_xml(const std::string& s) {
   std::string out;
   out.reserve(s.size());
   for (char c : s) {
@@ -44,24 +65,6 @@ std::string escape_xml(const std::string& s) {
   }
   return out;
 }
-
-std::string style_attributes(const Style& s) {
-  std::string a = s.cls.empty() ? std::string() : " class=\"" + escape_xml(s.cls) + "\"";
-  a += " fill=\"" + (s.fill ? s.fill->hex() : std::string("none")) + "\"";
-  if (s.fill && s.opacity < 1) a += " fill-opacity=\"" + px(s.opacity) + "\"";
-  if (s.stroke) {
-    a += " stroke=\"" + s.stroke->hex() + "\" stroke-width=\"" + px(s.width) +
-         "\" stroke-linejoin=\"round\" stroke-linecap=\"round\"";
-    if (!s.dash.empty()) {
-      a += " stroke-dasharray=\"";
-      for (std::size_t i = 0; i < s.dash.size(); ++i) a += (i ? "," : "") + px(s.dash[i]);
-      a += "\"";
-    }
-  }
-  return a;
-}
-
-}  // namespace
 
 std::string Rgb::hex() const {
   auto byte = [](double v) {

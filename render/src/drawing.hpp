@@ -12,6 +12,9 @@
 
 namespace qmotion::render::detail {
 
+/// Text for SVG or HTML: &, <, > and " escaped.
+std::string escape_xml(const std::string& s);
+
 using Eigen::Vector2d;
 using Eigen::Vector3d;
 

@@ -272,6 +272,32 @@ def test_animate_is_the_clis(tmp_path):
     assert not (tmp_path / "c.glb").exists()
 
 
+def test_view_is_the_clis(tmp_path):
+    m = qmotion.interpolate(data("helix_10.json"))
+    motion = tmp_path / "m.json"
+    m.save(str(motion))
+    ours = qmotion.view(m, str(tmp_path / "a.html"), profile="circle:2", body="sphere:1",
+                        points=[[1, 0, 0], [0, 2, 0]])
+    r = cli("view", motion, "--profile", "circle:2", "--body", "sphere:1", "--point", "1,0,0",
+            "--point", "0,2,0", "-o", tmp_path / "b.html")
+    assert r.returncode == 0, r.stderr
+    theirs = json.loads(r.stdout)
+    skip = ("output", "bytes")  # the name differs: "motion" against the file's
+    assert {k: v for k, v in ours.items() if k not in skip} == {k: v for k, v in theirs.items() if k not in skip}
+    assert ours["editable"] and ours["poses"] == 10 and ours["points"] == 2
+    # The pages differ only in the motion's name (the file's name twice in the title, its
+    # path in the data): "interpolate()" for a motion made in memory.
+    a = open(tmp_path / "a.html").read()
+    b = open(tmp_path / "b.html").read()
+    def unnamed(page, title, name):
+        return page.replace(">%s<" % title, "><").replace('"name":"%s"' % name, '"name":""')
+    assert unnamed(a, "interpolate()", "interpolate()") == unnamed(b, "m.json", str(motion))
+    assert ours["bytes"] == len(a.encode()) and theirs["bytes"] == len(b.encode())
+    with pytest.raises(ValueError, match="view writes an .html page"):
+        qmotion.view(m, str(tmp_path / "c.txt"))
+    assert not (tmp_path / "c.txt").exists()
+
+
 def test_toolpath_is_the_clis(tmp_path):
     m = qmotion.interpolate(data("poses/helix_40.json"))
     motion = tmp_path / "m.json"

@@ -14,6 +14,7 @@
 #include <qmotion/api/motion_info.hpp>
 #include <qmotion/api/qspline.hpp>
 #include <qmotion/api/toolpath.hpp>
+#include <qmotion/api/view.hpp>
 #include <qmotion/cam/cam_nurbs.hpp>
 #include <qmotion/cam/tool_trajectories.hpp>
 #include <qmotion/io/atomic_file.hpp>
@@ -41,6 +42,7 @@
 #include <qmotion/motion.hpp>
 #include <qmotion/render/canvas.hpp>
 #include <qmotion/render/render.hpp>
+#include <qmotion/render/view.hpp>
 #include <qmotion/sweep/factors.hpp>
 #include <qmotion/sweep/profiles.hpp>
 #include <qmotion/sweep/shell.hpp>

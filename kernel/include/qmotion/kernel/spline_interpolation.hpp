@@ -7,6 +7,7 @@
 #include <qmotion/kernel/interpolation.hpp>
 #include <qmotion/kernel/motion_factors.hpp>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace qmotion::kernel {
@@ -268,6 +269,22 @@ inline Motion<double> interpolate_c1(const std::vector<Pose<double>>& poses,
   return detail::finish(
       MotionFactors<double>{method, std::move(rot), std::move(trans), std::nullopt}, 3, 3, poses, t,
       max_residual, Form::c1);
+}
+
+/// The interpolator of `form` (docs/interpolation.md): `interpolate_bezier` with `bezier`'s
+/// options, `interpolate_bspline` or, in double only, `interpolate_c1` with `spline`'s. The
+/// one dispatch the library call and the viewer's kernel share.
+template <typename Scalar>
+Motion<Scalar> interpolate(const std::vector<Pose<Scalar>>& poses, const std::vector<Scalar>& t,
+                           Form form, const InterpolationOptions& bezier,
+                           const SplineOptions& spline) {
+  if (form == Form::bezier) return interpolate_bezier(poses, t, bezier);
+  if constexpr (std::is_same_v<Scalar, double>)
+    if (form == Form::c1) return interpolate_c1(poses, t, spline.translation, spline.max_residual);
+  if (form != Form::bspline)
+    throw Error(Errc::invalid_input,
+                std::string("--form ") + to_string(form) + " does not interpolate poses here");
+  return interpolate_bspline(poses, t, spline);
 }
 
 }  // namespace qmotion::kernel

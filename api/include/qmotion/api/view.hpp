@@ -1,0 +1,39 @@
+// <qmotion/api/view.hpp>: `qmotion view`: a motion as one self-contained HTML page that
+// animates it, draws its trajectories and exact sweep, and interpolates again in the page
+// when a pose is edited (docs/guide/view.md).
+#pragma once
+#include <cstddef>
+#include <nlohmann/json.hpp>
+#include <qmotion/motion.hpp>
+#include <string>
+#include <vector>
+
+namespace qmotion {
+
+struct ViewOptions {
+  std::string output;                   ///< .html
+  std::string profile;                  ///< a profile (io::read_profile's forms) swept; empty: none
+  std::string body;                     ///< a body (io::read_body's forms) moved; empty: none
+  std::vector<Eigen::Vector3d> points;  ///< points of the moving space traced; none: the origin
+};
+
+struct View {
+  std::string path;
+  std::size_t bytes = 0;       ///< of the page
+  std::size_t wasm_bytes = 0;  ///< of the kernel's WebAssembly module inside it
+  std::size_t poses = 0;
+  bool editable = false;  ///< the file records its method and poses: the page re-interpolates
+  nlohmann::json method;  ///< what the page interpolates with (null when not editable)
+  std::size_t profile_edges = 0, body_triangles = 0, points = 0;
+  nlohmann::json report() const;
+};
+
+/// The data the page reads (docs/guide/view.md): the motion's curve, its method and poses,
+/// the profile's edges, the body's triangles, the traced points. Errc::invalid_input for a
+/// quaternion-spline motion (the page's kernel is rational), a bad profile or body.
+nlohmann::json view_data(const Motion& motion, const ViewOptions& options);
+
+/// Writes the page to options.output (atomically; nothing on failure).
+View view(const Motion& motion, const ViewOptions& options);
+
+}  // namespace qmotion
