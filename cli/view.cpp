@@ -22,7 +22,7 @@ Command add_view(CLI::App& app) {
     qmotion::ViewOptions options;
   };
   auto o = std::make_shared<Options>();
-  sub->add_option("MOTION", o->motion, "Motion JSON file (a q-motion)")->required();
+  sub->add_option("MOTION", o->motion, "Motion JSON file (either kind)")->required();
   sub->add_option("-o,--output", o->options.output, "Output .html page")->required();
   sub->add_option("--profile", o->options.profile,
                   "A profile to sweep: a nurbs_curve JSON file or wire, a STEP/IGES file, or "

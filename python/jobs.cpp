@@ -196,7 +196,7 @@ void bind_jobs(py::module_& m) {
       py::arg("motion"), py::arg("path"), py::arg("profile") = "", py::arg("body") = "",
       py::arg("points") = py::none(),
       "`qmotion view`: one self-contained HTML page (no network, no server) at path that "
-      "animates the motion (a q-motion) with its key poses, the trajectories of points "
+      "animates the motion (either kind) with its key poses, the trajectories of points "
       "(default the origin), the exact sweep of profile and the moving body; the kernel runs "
       "in the page (WebAssembly) and interpolates again when a pose is edited. Returns the "
       "report dict: bytes, wasm_bytes, poses, editable, method, ...");

@@ -77,12 +77,7 @@ QSplineResult qspline(const PoseSet& set, const QSplineOptions& o) {
       *scheme == QSplineScheme::quintic ? tensions(o.tension, keys.size()) : std::vector<double>();
   kernel::QuaternionSpline spline;
   try {  // the kernel's refusals name keys; say which file they are in
-    if (*scheme == QSplineScheme::quintic)
-      spline = kernel::quintic_spline(keys, positions, t, alpha);
-    else if (*scheme == QSplineScheme::quartic)
-      spline = kernel::quartic_spline(keys, positions, a, b);
-    else
-      spline = kernel::kks_spline(keys, positions, a, b);
+    spline = kernel::qspline(*scheme, keys, positions, t, alpha);
   } catch (const Error& e) {
     throw Error(e.code(), set.source + ": " + e.what());
   }

@@ -63,10 +63,40 @@ json curve_of(const Motion::Rational& m) {
     for (int j = 0; j < 8; ++j) p.push_back(q[j]);
     points.push_back(std::move(p));
   }
-  return {{"basis", m.curve.basis == kernel::Basis::bezier ? "bezier" : "bspline"},
+  return {{"kind", "q-motion"},
+          {"basis", m.curve.basis == kernel::Basis::bezier ? "bezier" : "bspline"},
           {"degree", c.degree()},
           {"knots", c.knots()},
           {"control_points", std::move(points)}};
+}
+
+json quat(const kernel::Quaternion<double>& q) { return {q.w(), q.x(), q.y(), q.z()}; }
+
+/// A quaternion spline as the page's kernel reads it (loadSpline): what its file holds.
+json spline_of(const kernel::QuaternionSpline& s) {
+  json keys = json::array(), positions = json::array(), ctrl = json::array(), pctrl = json::array();
+  for (const auto& q : s.keys) keys.push_back(quat(q));
+  for (const auto& p : s.positions) positions.push_back(vec(p));
+  for (const auto& q : s.ctrl) ctrl.push_back(quat(q));
+  for (const auto& p : s.pctrl) pctrl.push_back(vec(p));
+  return {{"kind", "quaternion-spline"},
+          {"scheme", kernel::to_string(s.scheme)},
+          {"knots", s.knots},
+          {"keys", std::move(keys)},
+          {"positions", std::move(positions)},
+          {"tension", s.tension},
+          {"control_quaternions", std::move(ctrl)},
+          {"control_positions", std::move(pctrl)}};
+}
+
+/// A quaternion spline's keys are its poses, at its knots: the page fits them again at
+/// those knots (`given`), with the scheme and the tensions the file records.
+json spline_poses(const kernel::QuaternionSpline& s) {
+  json out = json::array();
+  for (std::size_t i = 0; i < s.keys.size(); ++i)
+    out.push_back(
+        {{"t", s.knots[i]}, {"position", vec(s.positions[i])}, {"quaternion", quat(s.keys[i])}});
+  return out;
 }
 
 }  // namespace
@@ -84,20 +114,24 @@ json View::report() const {
 }
 
 json view_data(const Motion& motion, const ViewOptions& o) {
-  if (!motion.is_rational())
-    throw Error(Errc::invalid_input,
-                motion.label() +
-                    ": view draws rational motions (q-motion files); the page's kernel does not "
-                    "evaluate a quaternion spline (use animate or render for it)");
-  const auto& m = motion.rational();
-  sweep::refuse_poles(m);  // its trajectories would run to infinity
-  json method = method_of(motion.provenance());
-  const bool editable = !method.is_null();
+  json curve, method, poses;
+  if (motion.is_rational()) {
+    const auto& m = motion.rational();
+    sweep::refuse_poles(m);  // its trajectories would run to infinity
+    curve = curve_of(m);
+    method = method_of(motion.provenance());
+    poses = poses_of(motion, !method.is_null());
+  } else {
+    const auto& s = motion.spline();
+    curve = spline_of(s);
+    method = {{"scheme", kernel::to_string(s.scheme)}, {"param", "given"}, {"tension", s.tension}};
+    poses = spline_poses(s);
+  }
   json data = {{"name", motion.label()},
                {"units", motion.units()},
-               {"motion", curve_of(m)},
+               {"motion", std::move(curve)},
                {"method", std::move(method)},
-               {"poses", poses_of(motion, editable)},
+               {"poses", std::move(poses)},
                {"profile", nullptr},
                {"body", nullptr},
                {"points", json::array()}};

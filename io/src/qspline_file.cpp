@@ -62,9 +62,7 @@ std::vector<Quaternion<double>> quaternions(const json& doc, const char* field,
 }  // namespace
 
 std::optional<kernel::QSplineScheme> qspline_scheme(const std::string& s) {
-  for (auto k : {QSplineScheme::kks, QSplineScheme::quintic, QSplineScheme::quartic})
-    if (s == kernel::to_string(k)) return k;
-  return std::nullopt;
+  return kernel::qspline_scheme_from_string(s);
 }
 
 bool is_qspline_document(const json& doc) {

@@ -1,7 +1,8 @@
 // render/viewer/kernel_wasm.cpp: the kernel the viewer page runs, compiled to WebAssembly by
-// Debian's emscripten (render/viewer/CMakeLists.txt). It holds one current motion: read from
-// the file's curve, or interpolated again from edited poses with the file's method; the page
-// evaluates it, its trajectories and its exact sweep through the calls bound at the end
+// Debian's emscripten (render/viewer/CMakeLists.txt). It holds one current motion of either
+// kind: a rational Q-motion read from its file's curve, or a quaternion spline read from its
+// keys and control points; or either made again from edited poses with the file's method.
+// The page evaluates it, its trajectories and its sweep through the calls bound at the end
 // (docs/guide/view.md). Every call returns an object with `error` set instead of throwing.
 #include <emscripten/bind.h>
 #include <emscripten/val.h>
@@ -10,6 +11,7 @@
 #include <qmotion/kernel/error.hpp>
 #include <qmotion/kernel/motion.hpp>
 #include <qmotion/kernel/parametrization.hpp>
+#include <qmotion/kernel/qspline.hpp>
 #include <qmotion/kernel/spline_interpolation.hpp>
 #include <qmotion/sweep/surface.hpp>
 #include <qmotion/sweep/surface_eval.hpp>
@@ -22,8 +24,12 @@ using emscripten::val;
 using qmotion::Errc;
 using qmotion::Error;
 using qmotion::kernel::Motion;
+using qmotion::kernel::Quaternion;
+using qmotion::kernel::QuaternionSpline;
 
-std::optional<Motion<double>> current;  // the motion the page shows
+// The motion the page shows: exactly one of the two is set once a motion is loaded.
+std::optional<Motion<double>> rational;
+std::optional<QuaternionSpline> spline;
 
 std::vector<double> numbers(const val& array) { return emscripten::vecFromJSArray<double>(array); }
 
@@ -31,6 +37,22 @@ val float64_array(const std::vector<double>& v) {
   return val::global("Float64Array")
       .new_(emscripten::typed_memory_view(v.size(), v.data()))
       .call<val>("slice");
+}
+
+std::vector<Quaternion<double>> quaternions(const val& flat_js) {
+  const auto flat = numbers(flat_js);
+  std::vector<Quaternion<double>> out;
+  for (std::size_t i = 0; i + 3 < flat.size(); i += 4)
+    out.emplace_back(flat[i], flat[i + 1], flat[i + 2], flat[i + 3]);
+  return out;
+}
+
+std::vector<Eigen::Vector3d> points(const val& flat_js) {
+  const auto flat = numbers(flat_js);
+  std::vector<Eigen::Vector3d> out;
+  for (std::size_t i = 0; i + 2 < flat.size(); i += 3)
+    out.emplace_back(flat[i], flat[i + 1], flat[i + 2]);
+  return out;
 }
 
 /// `count` >= 2 parameters evenly spread over [a, b], the last exactly b.
@@ -42,6 +64,22 @@ std::vector<double> spread(double a, double b, int count) {
   return out;
 }
 
+void require_motion() {
+  if (!rational && !spline) throw Error(Errc::invalid_input, "no motion");
+}
+double start() { return rational ? rational->a() : spline->a(); }
+double end() { return rational ? rational->b() : spline->b(); }
+
+/// The pose at t as `qmotion eval` computes it: the origin's image and the unit rotation.
+std::pair<Eigen::Vector3d, Quaternion<double>> pose(double t) {
+  using namespace qmotion::kernel;
+  if (spline) return {spline->position(t), spline->rotation(t)};
+  const auto q = evaluate(rational->curve, t);
+  if (q.real().norm2() <= 1e-300)
+    throw Error(Errc::numerical_failure, "the motion has a pole at t = " + std::to_string(t));
+  return {translation_vector(q), normalized(q.real())};
+}
+
 val failure(const std::string& message) {
   val out = val::object();
   out.set("error", message);
@@ -50,10 +88,11 @@ val failure(const std::string& message) {
 
 val success() {
   val out = val::object();
-  out.set("degree", current->degree());
-  out.set("segments", current->segments());
-  out.set("a", current->a());
-  out.set("b", current->b());
+  out.set("kind", rational ? "q-motion" : "quaternion-spline");
+  out.set("degree", rational ? rational->degree() : 0);
+  out.set("segments", rational ? rational->segments() : spline->segments());
+  out.set("a", start());
+  out.set("b", end());
   return out;
 }
 
@@ -77,15 +116,39 @@ val load_curve(std::string basis, int degree, val knots_js, val points_js) {
       for (int j = 0; j < 8; ++j) ctrl[i][j] = flat[8 * i + static_cast<std::size_t>(j)];
     const auto b =
         basis == "bezier" ? qmotion::kernel::Basis::bezier : qmotion::kernel::Basis::bspline;
-    current.emplace(qmotion::kernel::QMotion<double>{
+    rational.emplace(qmotion::kernel::QMotion<double>{
         b, qmotion::kernel::BSpline<qmotion::kernel::DualQuaternion<double>>::make(
                degree, knots, std::move(ctrl))});
+    spline.reset();
+    return success();
+  });
+}
+
+/// The quaternion spline of a file, as `qmotion` reads it (io/src/qspline_file.cpp): the
+/// scheme, the knots, 4 numbers per key, 3 per position, the quintic's tensions, and KKS's
+/// recorded control quaternions and points (its solution, not a new solve).
+val load_spline(std::string scheme_name, val knots_js, val keys_js, val positions_js,
+                val tension_js, val ctrl_js, val pctrl_js) {
+  return guarded([&] {
+    using namespace qmotion::kernel;
+    const auto scheme = qspline_scheme_from_string(scheme_name);
+    if (!scheme) throw Error(Errc::invalid_input, "unknown scheme '" + scheme_name + "'");
+    const auto knots = numbers(knots_js);
+    if (knots.size() < 2) throw Error(Errc::invalid_input, "a spline needs two knots or more");
+    if (*scheme == QSplineScheme::kks)
+      spline = kks_from_control(quaternions(keys_js), points(positions_js), knots.front(),
+                                knots.back(), quaternions(ctrl_js), points(pctrl_js));
+    else
+      spline =
+          qspline(*scheme, quaternions(keys_js), points(positions_js), knots, numbers(tension_js));
+    rational.reset();
     return success();
   });
 }
 
 /// Interpolates the poses (8 numbers each: t, x, y, z, w, qx, qy, qz; t NaN when absent)
-/// with a method as the file records it: {form, rotation, translation, param, k, l, l2}.
+/// with a method as the page's data records it: for a rational motion {form, rotation,
+/// translation, param, k, l, l2}; for a quaternion spline {scheme, param, tension}.
 val interpolate(val poses_js, val method) {
   return guarded([&] {
     using namespace qmotion::kernel;
@@ -98,23 +161,39 @@ val interpolate(val poses_js, val method) {
       poses[i].rotation = normalized(Quaternion<double>(p[4], p[5], p[6], p[7]));
     }
     const auto name = [&](const char* key) { return method[key].as<std::string>(); };
+    const auto rule = param_rule_from_string(name("param"));
+    if (!rule) throw Error(Errc::invalid_input, "the page's method names an unknown rule");
+    const std::vector<double> t = parametrize(poses, *rule);
+    if (method.hasOwnProperty("scheme")) {
+      const auto scheme = qspline_scheme_from_string(name("scheme"));
+      if (!scheme) throw Error(Errc::invalid_input, "the page's method names an unknown scheme");
+      std::vector<Quaternion<double>> keys;
+      std::vector<Eigen::Vector3d> positions;
+      for (const auto& p : poses) {
+        keys.push_back(p.rotation);
+        positions.push_back(p.position);
+      }
+      spline =
+          qspline(*scheme, std::move(keys), std::move(positions), t, numbers(method["tension"]));
+      rational.reset();
+      return success();
+    }
     const auto form = form_from_string(name("form"));
     const auto rotation = rotation_method_from_string(name("rotation"));
     const auto translation = translation_method_from_string(name("translation"));
-    const auto rule = param_rule_from_string(name("param"));
-    if (!form || !rotation || !translation || !rule)
+    if (!form || !rotation || !translation)
       throw Error(Errc::invalid_input, "the page's method names an unknown option");
     InterpolationOptions bezier;
     bezier.rotation = *rotation;
     bezier.translation = *translation;
     const int k = method["k"].as<int>(), l = method["l"].as<int>(), l2 = method["l2"].as<int>();
     if (*translation == TranslationMethod::trt) bezier.trt_degrees = std::make_pair(l, l2);
-    SplineOptions spline;
-    spline.translation = *translation;
-    spline.k = k;
-    spline.l = l;
-    current.emplace(
-        qmotion::kernel::interpolate(poses, parametrize(poses, *rule), *form, bezier, spline));
+    SplineOptions options;
+    options.translation = *translation;
+    options.k = k;
+    options.l = l;
+    rational.emplace(qmotion::kernel::interpolate(poses, t, *form, bezier, options));
+    spline.reset();
     return success();
   });
 }
@@ -122,28 +201,28 @@ val interpolate(val poses_js, val method) {
 /// The pose at t: [x, y, z, w, qx, qy, qz] with w >= 0, as `qmotion eval` gives it.
 val evaluate(double t) {
   return guarded([&] {
-    using namespace qmotion::kernel;
-    if (!current) throw Error(Errc::invalid_input, "no motion");
-    const auto q = qmotion::kernel::evaluate(current->curve, t);
-    if (q.real().norm2() <= 1e-300)
-      throw Error(Errc::numerical_failure, "the motion has a pole at t = " + std::to_string(t));
-    Quaternion<double> r = normalized(q.real());
+    require_motion();
+    auto [p, r] = pose(t);
     if (r.w() < 0) r = -r;
-    const Eigen::Vector3d p = translation_vector(q);
     return float64_array({p.x(), p.y(), p.z(), r.w(), r.x(), r.y(), r.z()});
   });
 }
 
-/// The point (x, y, z) of the moving space on its exact trajectory (a NURBS curve) at
-/// `count` parameters evenly spread over the interval: 3 numbers each.
+/// The point (x, y, z) of the moving space at `count` parameters evenly spread over the
+/// interval, 3 numbers each: on its exact trajectory (a NURBS curve) for a rational motion,
+/// R(t) x + p(t) for a quaternion spline.
 val trajectory(double x, double y, double z, int count) {
   return guarded([&] {
     using namespace qmotion;
-    if (!current) throw Error(Errc::invalid_input, "no motion");
-    const auto curve = sweep::trajectory_curve(*current, Eigen::Vector3d(x, y, z));
+    require_motion();
+    const Eigen::Vector3d X(x, y, z);
+    std::optional<sweep::NurbsCurve<double>> curve;
+    if (rational) curve = sweep::trajectory_curve(*rational, X);
     std::vector<double> out;
-    for (const double t : spread(current->a(), current->b(), count)) {
-      const Eigen::Vector3d p = sweep::evaluate(curve, t);
+    for (const double t : spread(start(), end(), count)) {
+      const Eigen::Vector3d p =
+          curve ? sweep::evaluate(*curve, t)
+                : Eigen::Vector3d(kernel::rotate(spline->rotation(t), X) + spline->position(t));
       out.insert(out.end(), {p.x(), p.y(), p.z()});
     }
     return float64_array(out);
@@ -151,15 +230,13 @@ val trajectory(double x, double y, double z, int count) {
 }
 
 /// The profile edge (degree, full knots, 3 numbers per pole, weights) read into a curve.
-qmotion::sweep::NurbsCurve<double> edge_of(int degree, const val& knots, const val& points,
+qmotion::sweep::NurbsCurve<double> edge_of(int degree, const val& knots, const val& poles,
                                            const val& weights) {
   qmotion::sweep::NurbsCurve<double> edge;
   edge.degree = degree;
   edge.knots = numbers(knots);
   edge.weights = numbers(weights);
-  const auto flat = numbers(points);
-  for (std::size_t i = 0; i + 2 < flat.size(); i += 3)
-    edge.points.emplace_back(flat[i], flat[i + 1], flat[i + 2]);
+  edge.points = points(poles);
   if (edge.knots.size() != edge.points.size() + static_cast<std::size_t>(degree) + 1 ||
       edge.weights.size() != edge.points.size())
     throw Error(Errc::invalid_input, "a profile edge's knots, poles and weights disagree");
@@ -167,9 +244,9 @@ qmotion::sweep::NurbsCurve<double> edge_of(int degree, const val& knots, const v
 }
 
 /// `count` points of a profile edge at parameters evenly spread over its knots.
-val curve_points(int degree, val knots, val points, val weights, int count) {
+val curve_points(int degree, val knots, val poles, val weights, int count) {
   return guarded([&] {
-    const auto edge = edge_of(degree, knots, points, weights);
+    const auto edge = edge_of(degree, knots, poles, weights);
     std::vector<double> out;
     for (const double v : spread(edge.knots.front(), edge.knots.back(), count)) {
       const Eigen::Vector3d p = qmotion::sweep::evaluate(edge, v);
@@ -179,18 +256,30 @@ val curve_points(int degree, val knots, val points, val weights, int count) {
   });
 }
 
-/// The exact sweep of a profile edge (degree, full knots, 3 numbers per pole, weights):
-/// its NURBS surface evaluated on `nt` x `nv` parameters (t major), 3 numbers each.
-val sweep_edge(int degree, val knots_js, val points_js, val weights_js, int nt, int nv) {
+/// The sweep of a profile edge (degree, full knots, 3 numbers per pole, weights) on `nt` x
+/// `nv` parameters (t major), 3 numbers each. A rational motion's is its exact NURBS surface
+/// (sweep::kinematic_nurbs), built and evaluated here; a quaternion spline's is
+/// R(t) x(v) + p(t), evaluated directly (it has no NURBS form).
+val sweep_edge(int degree, val knots_js, val poles_js, val weights_js, int nt, int nv) {
   return guarded([&] {
     using namespace qmotion;
-    if (!current) throw Error(Errc::invalid_input, "no motion");
-    const auto edge = edge_of(degree, knots_js, points_js, weights_js);
-    const sweep::SurfaceEvaluator surface(sweep::kinematic_nurbs(*current, edge));
-    const auto ts = spread(current->a(), current->b(), nt);
+    require_motion();
+    const auto edge = edge_of(degree, knots_js, poles_js, weights_js);
+    const auto ts = spread(start(), end(), nt);
     const auto vs = spread(edge.knots.front(), edge.knots.back(), nv);
     std::vector<Eigen::Vector3d> grid(ts.size() * vs.size());
-    surface.grid(ts, vs, grid.data(), 0, ts.size());  // per row the u basis once
+    if (rational) {
+      const sweep::SurfaceEvaluator surface(sweep::kinematic_nurbs(*rational, edge));
+      surface.grid(ts, vs, grid.data(), 0, ts.size());  // per row the u basis once
+    } else {
+      std::vector<Eigen::Vector3d> profile;
+      for (const double v : vs) profile.push_back(sweep::evaluate(edge, v));
+      for (std::size_t i = 0; i < ts.size(); ++i) {
+        const Eigen::Matrix3d R = kernel::rotation_matrix(spline->rotation(ts[i]));
+        const Eigen::Vector3d p = spline->position(ts[i]);
+        for (std::size_t j = 0; j < vs.size(); ++j) grid[i * vs.size() + j] = R * profile[j] + p;
+      }
+    }
     std::vector<double> out;
     out.reserve(3 * grid.size());
     for (const auto& p : grid) out.insert(out.end(), {p.x(), p.y(), p.z()});
@@ -202,6 +291,7 @@ val sweep_edge(int degree, val knots_js, val points_js, val weights_js, int nt, 
 
 EMSCRIPTEN_BINDINGS(qmotion_kernel) {
   emscripten::function("loadCurve", &load_curve);
+  emscripten::function("loadSpline", &load_spline);
   emscripten::function("interpolate", &interpolate);
   emscripten::function("evaluate", &evaluate);
   emscripten::function("trajectory", &trajectory);

@@ -26,7 +26,10 @@ const kernel = await QMotionKernel({
   wasmBinary: base64Bytes(document.getElementById("qmotion-wasm").textContent),
 });
 const motion = data.motion;
-let shown = kernel.loadCurve(motion.basis, motion.degree, motion.knots, motion.control_points.flat());
+let shown = motion.kind === "quaternion-spline"
+  ? kernel.loadSpline(motion.scheme, motion.knots, motion.keys.flat(), motion.positions.flat(),
+                      motion.tension, motion.control_quaternions.flat(), motion.control_positions.flat())
+  : kernel.loadCurve(motion.basis, motion.degree, motion.knots, motion.control_points.flat());
 if (shown.error) throw new Error(`${data.name}: ${shown.error}`);
 const poses = data.poses.map((p) => ({ t: p.t, position: [...p.position], quaternion: [...p.quaternion] }));
 
@@ -244,7 +247,7 @@ function edit(i, field, k, value) {
   if (result.error) return say(`pose ${i}: ${result.error}`, true);
   shown = result;
   redraw();
-  say(`interpolated again: ${data.method.form}, degree ${shown.degree}`, false);
+  say(`interpolated again: ${data.method.form ?? data.method.scheme}, ${shown.segments} segments`, false);
 }
 poses.forEach((p, i) => {
   const row = table.insertRow();

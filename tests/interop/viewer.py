@@ -1,16 +1,17 @@
 #!/usr/bin/env python3
 """The page of `qmotion view` works in headless Chromium, offline, and its kernel is ours.
 
-For a B-spline motion (10 poses, 7 segments) and a Bezier one (5 poses, affine rotation,
-minimal-order translation), writes a page with a profile, a body and a traced point, and opens
+For a B-spline motion (10 poses, 7 segments), a Bezier one (5 poses, affine rotation,
+minimal-order translation), a KKS quaternion spline (10 poses) and a quintic one with
+tensions (5 poses), writes a page with a profile, a body and a traced point, and opens
 it in Debian's chromium through viewer_check.mjs (puppeteer-core, from npm ci in
 tests/interop) with every request outside the file refused. Then checks:
 - no console error and no request outside the file;
 - the canvas is not blank (its pixels, decoded in a blank page);
 - the page's WebAssembly evaluation at 50 parameters equals `qmotion eval` to 1e-12 relative;
 - after editing a position and a rotation through the page's own inputs, the page's motion at
-  50 parameters equals `qmotion interpolate` on the edited poses (with the method the file
-  records) to 1e-12 relative, and differs from the motion before the edit; the trajectory the
+  50 parameters equals `qmotion interpolate` (or `qmotion qspline --param given`) on the
+  edited poses (with the method the file records) to 1e-12 relative, and differs from the motion before the edit; the trajectory the
   page draws lies on the native one (32-bit floats);
 - the other poses are unchanged.
 A missing Chromium, Node.js or puppeteer-core fails, naming what to install and the CMake
@@ -44,7 +45,13 @@ def native_eval(qmotion, motion, t, point=None):
 
 
 def interpolate_args(method):
-    args = ["--form", method["form"], "--rotation", method["rotation"], "--translation",
+    """The native command that makes the motion again with the page's method."""
+    if "scheme" in method:  # a quaternion spline, fitted again at its knots
+        args = ["qspline", "--scheme", method["scheme"], "--param", method["param"]]
+        if method["scheme"] == "quintic":
+            args += ["--tension", ",".join(repr(a) for a in method["tension"])]
+        return args
+    args = ["interpolate", "--form", method["form"], "--rotation", method["rotation"], "--translation",
             method["translation"], "--param", method["param"]]
     if method["form"] != "bezier":
         args += ["--degree", str(method["k"]), "--translation-degree", str(method["l"])]
@@ -67,11 +74,12 @@ def compare(what, page_samples, qmotion, motion, scale, failures):
     return worst
 
 
-def case(qmotion, node, chromium, here, work, name, poses, interp, edits, screenshot):
+def case(qmotion, node, chromium, here, work, name, poses, make, edits, screenshot):
+    """make: the command and options that make the motion from the poses."""
     failures = []
     motion = os.path.join(work, name + ".json")
     page = os.path.join(work, name + ".html")
-    run([qmotion, "interpolate", poses, "-o", motion] + interp)
+    run([qmotion, make[0], poses, "-o", motion] + make[1:])
     point = [3.0, -2.0, 1.5]
     run([qmotion, "view", motion, "-o", page, "--profile", "rect:4,2", "--body",
          "cutter:ball,4,10", "--point", "0,0,0", "--point", ",".join(map(repr, point))])
@@ -109,7 +117,8 @@ def case(qmotion, node, chromium, here, work, name, poses, interp, edits, screen
                  **({"t": p["t"]} if p["t"] is not None else {}))
             for p in rep["poses_after"]]}, f)
     edited_motion = os.path.join(work, name + "-edited.json")
-    run([qmotion, "interpolate", edited, "-o", edited_motion] + interpolate_args(rep["method"]))
+    again = interpolate_args(rep["method"])
+    run([qmotion, again[0], edited, "-o", edited_motion] + again[1:])
     after = compare(name + " after the edits", rep["after"], qmotion, edited_motion, scale, failures)
     moved = max(math.dist(a["pose"][:3], b["pose"][:3]) for a, b in zip(rep["before"], rep["after"]))
     if not moved > 1e-3 * scale:
@@ -164,13 +173,20 @@ def main():
     with open(five, "w") as f:
         json.dump({"units": "mm", "poses": helix["poses"][::2]}, f)
     failures = case(qmotion, node, chromium, here, work, "bspline",
-                    os.path.join(data, "helix_10.json"), [],
+                    os.path.join(data, "helix_10.json"), ["interpolate"],
                     [{"id": "pose-3-position-0", "value": 41.5},
                      {"id": "pose-6-rotation-2", "value": 35}], screenshot)
     failures += case(qmotion, node, chromium, here, work, "bezier", five,
-                     ["--rotation", "affine", "--translation", "minimal"],
+                     ["interpolate", "--rotation", "affine", "--translation", "minimal"],
                      [{"id": "pose-2-position-2", "value": 12.25},
                       {"id": "pose-1-rotation-0", "value": -20}], None)
+    failures += case(qmotion, node, chromium, here, work, "kks", os.path.join(data, "helix_10.json"),
+                     ["qspline", "--scheme", "kks"],
+                     [{"id": "pose-4-position-1", "value": 50},
+                      {"id": "pose-7-rotation-1", "value": 40}], None)
+    failures += case(qmotion, node, chromium, here, work, "quintic", five,
+                     ["qspline", "--scheme", "quintic", "--tension", "0.2,0.5,0.8,0.5,0.3"],
+                     [{"id": "pose-3-position-0", "value": -30}], None)
     for f in failures:
         print("FAIL:", f)
     return 1 if failures else 0

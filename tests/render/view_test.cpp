@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <qmotion/api/interpolate.hpp>
+#include <qmotion/api/qspline.hpp>
 #include <qmotion/api/view.hpp>
 #include <qmotion/io/motion_json.hpp>
 #include <qmotion/io/poses.hpp>
@@ -89,6 +90,29 @@ TEST(ViewData, AHandWrittenMotionIsShownNotEdited) {
   EXPECT_EQ(d["poses"].size(), 2u);  // a Bezier motion: its two ends
   const View v = view(m, {test::scratch_path("view", "hand.html").string(), "", "", {}});
   EXPECT_FALSE(v.editable);
+}
+
+TEST(ViewData, AQuaternionSplineTravelsAsItsFileHoldsIt) {
+  const auto poses = io::read_poses(test_data("poses/five_positions.json"));
+  for (const char* scheme : {"kks", "quintic", "quartic"}) {
+    const Motion m = qspline(poses, {scheme, "", ""}).motion;
+    const auto& s = m.spline();
+    const json d = view_data(m, {});
+    EXPECT_EQ(d["motion"]["kind"], "quaternion-spline");
+    EXPECT_EQ(d["motion"]["scheme"], scheme);
+    EXPECT_EQ(d["motion"]["knots"].get<std::vector<double>>(), s.knots);
+    EXPECT_EQ(d["motion"]["control_quaternions"].size(), s.ctrl.size());  // KKS's solution
+    // Edited, it is fitted again at its knots with its scheme and tensions.
+    EXPECT_EQ(d["method"]["scheme"], scheme);
+    EXPECT_EQ(d["method"]["param"], "given");
+    EXPECT_EQ(d["method"]["tension"].get<std::vector<double>>(), s.tension);
+    ASSERT_EQ(d["poses"].size(), s.keys.size());
+    for (std::size_t i = 0; i < s.keys.size(); ++i) {
+      EXPECT_EQ(d["poses"][i]["t"].get<double>(), s.knots[i]);
+      EXPECT_EQ(d["poses"][i]["quaternion"][0].get<double>(), s.keys[i].w());
+      EXPECT_EQ(d["poses"][i]["position"][2].get<double>(), s.positions[i].z());
+    }
+  }
 }
 
 TEST(ViewData, CarriesProfileBodyAndPoints) {

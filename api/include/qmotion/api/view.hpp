@@ -28,9 +28,10 @@ struct View {
   nlohmann::json report() const;
 };
 
-/// The data the page reads (docs/guide/view.md): the motion's curve, its method and poses,
-/// the profile's edges, the body's triangles, the traced points. Errc::invalid_input for a
-/// quaternion-spline motion (the page's kernel is rational), a bad profile or body.
+/// The data the page reads (docs/guide/view.md): the motion (a rational curve, or a quaternion
+/// spline's keys and control points), its method and poses, the profile's edges, the body's
+/// triangles, the traced points. Errc::invalid_input for a bad profile, body or point;
+/// Errc::numerical_failure for a rational motion with a pole.
 nlohmann::json view_data(const Motion& motion, const ViewOptions& options);
 
 /// Writes the page to options.output (atomically; nothing on failure).

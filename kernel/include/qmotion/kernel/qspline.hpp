@@ -20,6 +20,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <qmotion/kernel/error.hpp>
 #include <qmotion/kernel/quaternion.hpp>
 #include <string>
@@ -39,6 +40,13 @@ inline const char* to_string(QSplineScheme s) {
       return "quartic";
   }
   return "";
+}
+
+/// The scheme of a name as to_string spells it (the one place scheme names are parsed).
+inline std::optional<QSplineScheme> qspline_scheme_from_string(const std::string& s) {
+  for (auto k : {QSplineScheme::kks, QSplineScheme::quintic, QSplineScheme::quartic})
+    if (s == to_string(k)) return k;
+  return std::nullopt;
 }
 
 /// Keys closer than this to a half-turn apart (|E_k . E_k+1| below it) leave the shorter
@@ -570,6 +578,22 @@ inline QuaternionSpline kks_from_control(std::vector<Quaternion<double>> keys,
   detail::finish(s);
   s.residual = detail::kks_residual(s.keys, s.ctrl);
   return s;
+}
+
+/// The spline of `scheme` through the keys and positions at the parameters t: the quintic
+/// takes t as its knots and `tension` as its alpha per key; KKS and the quartic place the
+/// keys at uniform knots on [t_0, t_n]. The one dispatch `qmotion qspline` and the viewer's
+/// kernel share.
+inline QuaternionSpline qspline(QSplineScheme scheme, std::vector<Quaternion<double>> keys,
+                                std::vector<Eigen::Vector3d> positions,
+                                const std::vector<double>& t, std::vector<double> tension = {}) {
+  if (t.size() != keys.size() || t.size() < 2)
+    throw Error(Errc::invalid_input, "qspline: expected a parameter for each of two or more keys");
+  if (scheme == QSplineScheme::quintic)
+    return quintic_spline(std::move(keys), std::move(positions), t, std::move(tension));
+  if (scheme == QSplineScheme::quartic)
+    return quartic_spline(std::move(keys), std::move(positions), t.front(), t.back());
+  return kks_spline(std::move(keys), std::move(positions), t.front(), t.back());
 }
 
 }  // namespace qmotion::kernel
