@@ -3,6 +3,7 @@
 #include <qmotion/api/view.hpp>
 #include <qmotion/io/atomic_file.hpp>
 #include <qmotion/io/bodies.hpp>
+#include <qmotion/io/nurbs_json.hpp>
 #include <qmotion/io/profiles.hpp>
 #include <qmotion/kernel/error.hpp>
 #include <qmotion/render/view.hpp>
@@ -14,7 +15,8 @@ namespace {
 
 using json = nlohmann::json;
 
-json vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+json quat(const Eigen::Quaterniond& q) { return {q.w(), q.x(), q.y(), q.z()}; }
+json quat(const kernel::Quaternion<double>& q) { return {q.w(), q.x(), q.y(), q.z()}; }
 
 /// The options that make the motion again from edited poses, by `interpolate`'s names; null
 /// when the file does not record them (hand-written) or records a fit.
@@ -40,17 +42,15 @@ json poses_of(const Motion& motion, bool editable) {
       // Without a rule's name the parameters were given: they travel as the poses' t.
       const bool given = p->param.empty() || p->param == "given";
       json t = x.t ? json(*x.t) : given ? json(p->parameters.at(i)) : json(nullptr);
-      out.push_back(
-          {{"t", t}, {"position", vec(x.position)}, {"quaternion", {q.w(), q.x(), q.y(), q.z()}}});
+      out.push_back({{"t", t}, {"position", io::point_json(x.position)}, {"quaternion", quat(q)}});
     }
     return out;
   }
   for (const double t : motion.breakpoints()) {
     const Eigen::Matrix4d f = motion.frame(t);
     const Eigen::Quaterniond q(Eigen::Matrix3d(f.block<3, 3>(1, 1)));
-    out.push_back({{"t", t},
-                   {"position", vec(f.block<3, 1>(1, 0))},
-                   {"quaternion", {q.w(), q.x(), q.y(), q.z()}}});
+    out.push_back(
+        {{"t", t}, {"position", io::point_json(f.block<3, 1>(1, 0))}, {"quaternion", quat(q)}});
   }
   return out;
 }
@@ -70,15 +70,13 @@ json curve_of(const Motion::Rational& m) {
           {"control_points", std::move(points)}};
 }
 
-json quat(const kernel::Quaternion<double>& q) { return {q.w(), q.x(), q.y(), q.z()}; }
-
 /// A quaternion spline as the page's kernel reads it (loadSpline): what its file holds.
 json spline_of(const kernel::QuaternionSpline& s) {
   json keys = json::array(), positions = json::array(), ctrl = json::array(), pctrl = json::array();
   for (const auto& q : s.keys) keys.push_back(quat(q));
-  for (const auto& p : s.positions) positions.push_back(vec(p));
+  for (const auto& p : s.positions) positions.push_back(io::point_json(p));
   for (const auto& q : s.ctrl) ctrl.push_back(quat(q));
-  for (const auto& p : s.pctrl) pctrl.push_back(vec(p));
+  for (const auto& p : s.pctrl) pctrl.push_back(io::point_json(p));
   return {{"kind", "quaternion-spline"},
           {"scheme", kernel::to_string(s.scheme)},
           {"knots", s.knots},
@@ -94,8 +92,9 @@ json spline_of(const kernel::QuaternionSpline& s) {
 json spline_poses(const kernel::QuaternionSpline& s) {
   json out = json::array();
   for (std::size_t i = 0; i < s.keys.size(); ++i)
-    out.push_back(
-        {{"t", s.knots[i]}, {"position", vec(s.positions[i])}, {"quaternion", quat(s.keys[i])}});
+    out.push_back({{"t", s.knots[i]},
+                   {"position", io::point_json(s.positions[i])},
+                   {"quaternion", quat(s.keys[i])}});
   return out;
 }
 
@@ -139,7 +138,7 @@ json view_data(const Motion& motion, const ViewOptions& o) {
     json edges = json::array();
     for (const auto& e : io::read_profile(o.profile, motion.units()).edges) {
       json points = json::array();
-      for (const auto& p : e.points) points.push_back(vec(p));
+      for (const auto& p : e.points) points.push_back(io::point_json(p));
       edges.push_back({{"degree", e.degree},
                        {"knots", e.knots},
                        {"control_points", std::move(points)},
@@ -157,7 +156,7 @@ json view_data(const Motion& motion, const ViewOptions& o) {
   }
   for (const auto& p : o.points) {
     if (!p.allFinite()) throw Error(Errc::invalid_input, "--point: expected finite x,y,z");
-    data["points"].push_back(vec(p));
+    data["points"].push_back(io::point_json(p));
   }
   return data;
 }

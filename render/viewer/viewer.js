@@ -31,7 +31,8 @@ let shown = motion.kind === "quaternion-spline"
                       motion.tension, motion.control_quaternions.flat(), motion.control_positions.flat())
   : kernel.loadCurve(motion.basis, motion.degree, motion.knots, motion.control_points.flat());
 if (shown.error) throw new Error(`${data.name}: ${shown.error}`);
-const poses = data.poses.map((p) => ({ t: p.t, position: [...p.position], quaternion: [...p.quaternion] }));
+const copyPoses = (list) => list.map((p) => ({ t: p.t, position: [...p.position], quaternion: [...p.quaternion] }));
+const poses = copyPoses(data.poses);
 
 // The scene, z up as in qmotion.
 const canvas = document.getElementById("scene");
@@ -297,7 +298,7 @@ renderer.setAnimationLoop((now) => {
 window.qmotion = {
   evaluate: (t) => Array.from(kernel.evaluate(t)),
   range: () => [shown.a, shown.b],
-  poses: () => poses.map((p) => ({ t: p.t, position: [...p.position], quaternion: [...p.quaternion] })),
+  poses: () => copyPoses(poses),
   method: data.method,
   kernel, // the WebAssembly kernel itself (render/viewer/kernel_wasm.cpp)
   // The trajectories as drawn (3 numbers per vertex) and the points they trace.
