@@ -200,6 +200,26 @@ void bind_jobs(py::module_& m) {
       "(default the origin), the exact sweep of profile and the moving body; the kernel runs "
       "in the page (WebAssembly) and interpolates again when a pose is edited. Returns the "
       "report dict: bytes, wasm_bytes, poses, editable, method, ...");
+  m.def(
+      "volume",
+      [](const PyMotion& p, const std::string& path, const std::string& body, const py::object& tol,
+         const std::string& units, bool ascii) {
+        VolumeOptions o;
+        o.output = path;
+        o.body = body;
+        if (!tol.is_none()) o.tol = tol.cast<double>();
+        o.units = units;
+        o.ascii = ascii;
+        return to_python(volume(p.motion, o).report());
+      },
+      py::arg("motion"), py::arg("path"), py::arg("body"), py::arg("tol") = py::none(),
+      py::arg("units") = "", py::arg("ascii") = false,
+      "`qmotion volume`: a closed, outward, self-intersection-free mesh at path (.stl, .obj, "
+      ".ply, or .json with the report) that encloses for certain the space body (sphere:r, "
+      "box:a,b,c, cylinder:r,h, cutter:flat|ball,D,L, cutter:bull,D,rc,L or a closed "
+      ".stl/.obj/.ply mesh) occupies under the motion (either kind), every vertex within tol "
+      "(output units; default 1e-3 of the volume's diagonal). Returns the report dict: "
+      "volume_bounds, distance_bound, measured_distance, triangles, ...");
 #ifdef QMOTION_WITH_CGAL
   m.def(
       "check_exact",

@@ -8,8 +8,9 @@
 #           clang-format, pytest for the Python module, FreeCAD for the interop test, and
 #           clang with libclang-rt-14-dev for scripts/test-sanitized.sh: sanitizers, libFuzzer;
 #           linuxcnc-uspace for its rs274 G-code interpreter; Blender for the glTF test, and
-#           Chromium for the viewer's test, then the npm packages of tests/interop from
-#           their lock file: the Khronos glTF validator and puppeteer-core).
+#           Chromium for the viewer's test; OpenVDB for the swept-volume peer benchmark; then
+#           the npm packages of tests/interop from their lock file: the Khronos glTF
+#           validator and puppeteer-core).
 set -euo pipefail
 
 packages=(
@@ -24,7 +25,7 @@ packages=(
 command -v npm >/dev/null || packages+=(nodejs npm)
 if [[ "${1:-}" == "--test" ]]; then
   packages+=(googletest libgtest-dev libgmock-dev libbenchmark-dev clang-format git python3 python3-pytest freecad-python3
-    clang libclang-rt-14-dev linuxcnc-uspace time blender chromium)
+    clang libclang-rt-14-dev linuxcnc-uspace time blender chromium libopenvdb-dev)
 fi
 
 missing=()

@@ -298,6 +298,45 @@ def test_view_is_the_clis(tmp_path):
     assert not (tmp_path / "c.txt").exists()
 
 
+def test_volume_is_the_clis(tmp_path):
+    m = qmotion.interpolate(data("poses/five_positions.json"))
+    motion = tmp_path / "m.json"
+    m.save(str(motion))
+    ours = qmotion.volume(m, str(tmp_path / "a.stl"), "cutter:ball,6,20", tol=2.0)
+    r = cli("volume", motion, "--body", "cutter:ball,6,20", "--tol", "2", "-o", tmp_path / "b.stl")
+    assert r.returncode == 0, r.stderr
+    theirs = json.loads(r.stdout)
+    skip = ("output", "seconds")
+    assert {k: v for k, v in ours.items() if k not in skip} == {k: v for k, v in theirs.items() if k not in skip}
+    assert ours["distance_bound"] <= 2.0 and ours["closed"]
+    lower, upper = ours["volume_bounds"]
+    assert 0 < lower < upper
+    # Binary STL: 84 bytes of header and count, 50 a triangle; the same bytes both ways.
+    a = open(tmp_path / "a.stl", "rb").read()
+    assert len(a) == 84 + 50 * ours["triangles"] and a == open(tmp_path / "b.stl", "rb").read()
+    # In inches: the same mesh scaled, the volume by 25.4^3.
+    inch = qmotion.volume(m, str(tmp_path / "c.json"), "cutter:ball,6,20", tol=2.0 / 25.4, units="in")
+    assert inch["triangles"] == ours["triangles"]
+    assert abs(inch["volume_bounds"][1] * 25.4 ** 3 - upper) < 1e-9 * upper
+    doc = json.load(open(tmp_path / "c.json"))
+    assert doc["units"] == "in" and len(doc["triangles"]) == ours["triangles"]
+    with pytest.raises(ValueError, match="exact STEP/IGES faces are not built yet"):
+        qmotion.volume(m, str(tmp_path / "d.step"), "sphere:1")
+    assert not (tmp_path / "d.step").exists()
+    # `check --body` by its own sampling: the STL and the JSON (in inches) enclose the cutter's
+    # volume, vertices within the tolerance; a bigger cutter's volume is not enclosed (exit 3).
+    for f in ("a.stl", "c.json"):
+        r = cli("check", tmp_path / f, "--motion", motion, "--body", "cutter:ball,6,20")
+        assert r.returncode == 0, r.stderr
+        c = json.loads(r.stdout)
+        assert c["encloses"] and c["outside"] == 0 and c["samples"] == 20000
+        assert 0.3 * 2.0 < c["vertex_distance"] <= ours["distance_bound"] * (1 + 1e-6)
+        assert c["triangles"] == ours["triangles"]
+    r = cli("check", tmp_path / "a.stl", "--motion", motion, "--body", "cutter:ball,10,20")
+    assert r.returncode == 3 and "lie outside the mesh" in r.stderr
+    assert json.loads(r.stdout)["outside"] > 0
+
+
 def test_toolpath_is_the_clis(tmp_path):
     m = qmotion.interpolate(data("poses/helix_40.json"))
     motion = tmp_path / "m.json"

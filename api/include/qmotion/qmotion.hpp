@@ -15,6 +15,7 @@
 #include <qmotion/api/qspline.hpp>
 #include <qmotion/api/toolpath.hpp>
 #include <qmotion/api/view.hpp>
+#include <qmotion/api/volume.hpp>
 #include <qmotion/cam/cam_nurbs.hpp>
 #include <qmotion/cam/tool_trajectories.hpp>
 #include <qmotion/io/atomic_file.hpp>

@@ -242,4 +242,105 @@ inline double radius(const Body& body) {
   return 0;
 }
 
+namespace detail {
+
+/// The signed distance from (rho, z), rho >= 0, to the meridian section of a solid of
+/// revolution about z: 0 <= z <= L, radius R, and the bottom corner rounded with radius rc
+/// (0: a cylinder; R: a ball end). The section is convex and holds the axis, so the distance
+/// in the half-plane is the distance in space. Outside, the nearest point is on the top
+/// edge, its outer corner, the side, the bottom or the corner arc, by the zone of (rho, z);
+/// inside, the depth is the least distance to the section's supporting lines (convex): the
+/// top, the side, the bottom and, in the corner's quadrant, the arc's tangents.
+inline double revolved_distance(double rho, double z, double R, double rc, double L) {
+  const double cx = R - rc, cz = rc;  // the corner arc's centre
+  const bool corner = rho > cx && z < cz;
+  const double dc = corner ? std::sqrt((rho - cx) * (rho - cx) + (z - cz) * (z - cz)) : 0.0;
+  if (z > L) return rho <= R ? z - L : std::sqrt((rho - R) * (rho - R) + (z - L) * (z - L));
+  if (corner) {
+    if (dc > rc) return dc - rc;
+  } else if (z < 0) {
+    return -z;
+  } else if (rho > R) {
+    return rho - R;
+  }
+  double depth = std::min({L - z, R - rho, z});
+  if (corner) depth = std::min(depth, rc - dc);
+  return -depth;
+}
+
+/// The closest point to x on the triangle (a, b, c) (Ericson, Real-Time Collision
+/// Detection, 5.1.5).
+inline Eigen::Vector3d closest_on_triangle(const Eigen::Vector3d& x, const Eigen::Vector3d& a,
+                                           const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+  const Eigen::Vector3d ab = b - a, ac = c - a, ax = x - a;
+  const double d1 = ab.dot(ax), d2 = ac.dot(ax);
+  if (d1 <= 0 && d2 <= 0) return a;
+  const Eigen::Vector3d bx = x - b;
+  const double d3 = ab.dot(bx), d4 = ac.dot(bx);
+  if (d3 >= 0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + d1 / (d1 - d3) * ab;
+  const Eigen::Vector3d cx = x - c;
+  const double d5 = ab.dot(cx), d6 = ac.dot(cx);
+  if (d6 >= 0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + d2 / (d2 - d6) * ac;
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
+    return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
+  const double den = 1 / (va + vb + vc);
+  return a + ab * (vb * den) + ac * (vc * den);
+}
+
+/// The signed distance from x to a closed, outward-oriented triangle mesh: the distance to
+/// its nearest triangle, negative where the winding number (the solid angles' sum over 4 pi,
+/// Van Oosterom and Strackee) is above one half.
+inline double mesh_distance(const TriangleMesh& m, const Eigen::Vector3d& x) {
+  double d2 = HUGE_VAL, omega = 0;
+  for (const auto& t : m.triangles) {
+    const Eigen::Vector3d &a = m.vertices[t[0]], &b = m.vertices[t[1]], &c = m.vertices[t[2]];
+    d2 = std::min(d2, (closest_on_triangle(x, a, b, c) - x).squaredNorm());
+    const Eigen::Vector3d p = a - x, q = b - x, r = c - x;
+    const double lp = p.norm(), lq = q.norm(), lr = r.norm();
+    const double num = p.dot(q.cross(r));
+    const double den = lp * lq * lr + p.dot(q) * lr + q.dot(r) * lp + r.dot(p) * lq;
+    omega += 2 * std::atan2(num, den);
+  }
+  const double d = std::sqrt(d2);
+  return omega > 2 * 3.14159265358979323846 ? -d : d;
+}
+
+}  // namespace detail
+
+/// The signed distance from the point x of the moving space to the body: negative inside,
+/// exact for the sphere, box, cylinder and cutters (up to rounding); for a mesh, the distance
+/// to its nearest triangle with the sign of its winding number (linear in its size).
+inline double signed_distance(const Body& body, const Eigen::Vector3d& x) {
+  using K = Body::Kind;
+  switch (body.kind) {
+    case K::sphere:
+      return x.norm() - body.r;
+    case K::box: {
+      const Eigen::Vector3d q = x.cwiseAbs() - 0.5 * Eigen::Vector3d(body.a, body.b, body.c);
+      return q.cwiseMax(0.0).norm() + std::min(q.maxCoeff(), 0.0);
+    }
+    case K::cylinder:
+      return detail::revolved_distance(std::sqrt(x.x() * x.x() + x.y() * x.y()), x.z(), body.r, 0,
+                                       body.h);
+    case K::flat_cutter:
+    case K::ball_cutter:
+    case K::bull_cutter: {
+      const double R = body.D / 2;
+      const double rc = body.kind == K::flat_cutter   ? 0.0
+                        : body.kind == K::ball_cutter ? R
+                                                      : body.rc;
+      return detail::revolved_distance(std::sqrt(x.x() * x.x() + x.y() * x.y()), x.z(), R, rc,
+                                       body.L);
+    }
+    case K::mesh:
+      return detail::mesh_distance(body.mesh, x);
+  }
+  return HUGE_VAL;
+}
+
 }  // namespace qmotion::sweep

@@ -1,0 +1,82 @@
+// <qmotion/api/volume.hpp>: `qmotion volume`: the space a moving solid occupies, as a closed
+// mesh that encloses it for certain and whose vertices lie within a tolerance of it
+// (docs/guide/volume.md).
+#pragma once
+#include <Eigen/Core>
+#include <array>
+#include <cstddef>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <qmotion/motion.hpp>
+#include <qmotion/sweep/body.hpp>
+#include <string>
+#include <vector>
+
+namespace qmotion {
+
+/// The swept volume V = { M(t) x : t in [a, b], x in the body } enclosed by a triangle mesh,
+/// in the motion's length unit. Certified (docs/geometry.md, "Swept volumes"):
+/// - the mesh is closed, 2-manifold, outward-oriented and free of self-intersections, and
+///   V lies inside it;
+/// - every vertex lies within distance_bound <= tolerance of V;
+/// - volume_lower <= vol(V) <= volume_upper.
+struct SweptVolume {
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<std::array<int, 3>> triangles;  ///< 0-based, counter-clockwise from outside
+  double tolerance = 0;
+  double distance_bound = 0;     ///< certified, over every vertex
+  double measured_distance = 0;  ///< the vertices' distance refined by a search on t
+  std::size_t measured_vertices = 0;
+  double volume_lower = 0, volume_upper = 0;
+  double grid_step = 0;         ///< the lattice's edge
+  double level = 0;             ///< the level of the distance bound the surface follows
+  std::size_t time_pieces = 0;  ///< leaves of the parameter tree
+  double piece_delta = 0;       ///< their largest certified radius of motion
+  std::size_t distance_queries = 0;
+  int rounds = 0;  ///< lattices tried until every vertex was within the tolerance
+};
+
+/// The swept volume of body under the motion (either kind), every vertex within tol (motion
+/// unit; unset: 1e-3 of the bounding-box diagonal of V, sampled). Errc::invalid_input for a
+/// bad body or tolerance; Errc::numerical_failure for a rational motion with a pole on its
+/// interval, or a tolerance too fine for the memory.
+SweptVolume swept_volume(const Motion& motion, const sweep::Body& body,
+                         std::optional<double> tol = std::nullopt);
+
+struct VolumeOptions {
+  std::string output;         ///< .stl, .obj, .ply (the mesh) or .json (mesh and report)
+  std::string body;           ///< io::read_body's forms (required)
+  std::optional<double> tol;  ///< in the output unit; unset: 1e-3 of V's diagonal
+  std::string units;          ///< the output unit (default the motion's)
+  bool ascii = false;         ///< STL and PLY as text
+};
+
+/// What `qmotion volume` prints: SweptVolume's figures in the output unit, and the file.
+struct VolumeReport {
+  std::string path, body, units;
+  SweptVolume volume;  ///< scaled into units (without the mesh)
+  std::size_t triangles = 0, vertices = 0;
+  bool closed = false;
+  double seconds = 0;
+  nlohmann::json report() const;
+};
+
+/// Writes the enclosing mesh of the body's swept volume to options.output. Errc::invalid_input
+/// (nothing written) for an unknown extension, STEP or IGES (no exact faces yet), a missing
+/// or bad body, a bad tolerance or unit; Errc::numerical_failure for a pole.
+VolumeReport volume(const Motion& motion, const VolumeOptions& options);
+
+/// `qmotion check VOLUME --motion M --body B`: a volume mesh checked by sampling of its own,
+/// independent of how it was made (CGAL's point-in-mesh test, a search on t):
+/// - `samples` points of the swept volume (at random t: on the body's boundary, vertices of
+///   its triangulation within 1e-4 of its radius, and midpoints of two such inside it) and
+///   how many lie outside the mesh (`outside`; `encloses` when none);
+/// - the largest distance to the swept volume of up to 20 000 of its vertices, each by 256
+///   times and golden sections (`vertex_distance`, an upper bound of each);
+/// - triangles, vertices, its volume, closed and oriented (else refused as a body is).
+/// The mesh is in the motion's unit (STL, OBJ, PLY) or declares it (`qmotion volume`'s
+/// JSON). Errc::invalid_input for an open mesh or a bad body; needs CGAL.
+nlohmann::json check_volume(const std::string& path, const Motion& motion, const std::string& body,
+                            int samples = 20000);
+
+}  // namespace qmotion

@@ -1,0 +1,541 @@
+// api/src/volume.cpp: `qmotion volume` (docs/guide/volume.md; the construction and its proof
+// are in docs/geometry.md, "Swept volumes").
+//
+// The route: a lower bound F of the distance to V at the vertices of a cubic lattice (a
+// branch and bound over sweep::SweptVolumeTree), its piecewise-linear interpolant g over the
+// six Kuhn tetrahedra of every cube, and the surface g = tau (marching tetrahedra) with
+// tau above the tetrahedra's circumradius h sqrt(3) / 2:
+// - for q in V inside a tetrahedron with vertices v_i and barycentric weights l_i,
+//   g(q) = sum l_i F(v_i) <= sum l_i f(v_i) <= sum l_i |v_i - q| <= sqrt(sum l_i |v_i - q|^2)
+//   <= the circumradius (f is 1-Lipschitz and 0 on V; the last sum is R^2 - |q - centre|^2),
+//   so V lies in { g < tau }: the mesh encloses V;
+// - a level set of a piecewise-linear function at a value no vertex takes is a closed
+//   2-manifold, and its pieces lie in disjoint tetrahedra: no self-intersection;
+// - each output vertex's distance to V is bounded by placing the body at one parameter (an
+//   upper bound of f); the largest is the certified distance bound, and the lattice is made
+//   finer until it is within the tolerance.
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <qmotion/api/volume.hpp>
+#include <qmotion/io/atomic_file.hpp>
+#include <qmotion/io/bodies.hpp>
+#include <qmotion/io/mesh.hpp>
+#include <qmotion/io/units.hpp>
+#include <qmotion/kernel/error.hpp>
+#include <qmotion/kernel/interpolation.hpp>
+#include <qmotion/sweep/swept_volume.hpp>
+#include <qmotion/sweep/trajectory.hpp>
+#include <unordered_map>
+
+namespace qmotion {
+namespace {
+
+constexpr int kBlock = 8;  // lattice vertices per block edge
+constexpr double kSqrt3 = 1.7320508075688772;
+constexpr double kPi = 3.14159265358979323846;
+
+/// The lattice: vertices origin + h (i, j, k), 0 <= i < n[0], ...; blocks of 8^3 vertices.
+class Lattice {
+ public:
+  enum class Kind : std::uint8_t { far, deep, near };
+  struct Block {
+    Kind kind = Kind::near;
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    double lower = 0, depth = 0;  // at the centre
+    std::vector<double> value;    // near: F at the 512 vertices
+    std::vector<float> depth_at;  // near: certified depth inside V (0 outside)
+  };
+
+  Lattice(const sweep::SweptVolumeTree& tree, const Eigen::AlignedBox3d& box, double h, double tau)
+      : tree_(tree), box_(box), h_(h), tau_(tau), eps_(1e-7 * h) {
+    const double pad = tau + 3 * h;
+    origin_ = box.min() - Eigen::Vector3d::Constant(pad);
+    for (int a = 0; a < 3; ++a) {
+      const double n = std::ceil((box.max()(a) - box.min()(a) + 2 * pad) / h) + 1;
+      if (!(n < 1e6))
+        throw Error(Errc::numerical_failure, "volume: the tolerance is too fine for a lattice");
+      n_[a] = static_cast<long>(n);
+      nb_[a] = (n_[a] + kBlock - 1) / kBlock;
+    }
+    const double blocks = static_cast<double>(nb_[0]) * nb_[1] * nb_[2];
+    if (blocks > 8e6)
+      throw Error(Errc::numerical_failure,
+                  "volume: the tolerance is too fine: the lattice would have " +
+                      kernel::detail::format_double(blocks) + " blocks");
+    blocks_.resize(static_cast<std::size_t>(blocks));
+  }
+
+  /// Classifies every block by one query at its centre, then evaluates the near ones. A far
+  /// block's vertices are more than h sqrt(3) beyond tau, so none is a neighbour of an inside
+  /// vertex: the surface's vertices interpolate evaluated values only.
+  void evaluate(std::atomic<std::size_t>& queries) {
+    const double r = 0.5 * (kBlock - 1) * kSqrt3 * h_;        // centre to an owned vertex
+    const double r_cells = 0.5 * (kBlock + 1) * kSqrt3 * h_;  // centre to a cell's corner
+    tbb::parallel_for(std::size_t(0), blocks_.size(), [&](std::size_t b) {
+      Block& B = blocks_[b];
+      const auto [bi, bj, bk] = block_index(b);
+      B.centre = position(bi * kBlock, bj * kBlock, bk * kBlock) +
+                 Eigen::Vector3d::Constant(0.5 * (kBlock - 1) * h_);
+      const auto d = tree_.query(B.centre, -r_cells);
+      ++queries;
+      B.lower = std::max(d.lower, box_distance(B.centre));
+      B.depth = d.signed_upper < 0 ? -d.signed_upper : 0;
+      if (B.depth >= r_cells)
+        B.kind = Kind::deep;
+      else if (B.lower - r >= tau_ + 2 * kSqrt3 * h_ + 2 * eps_)
+        B.kind = Kind::far;
+      else
+        B.kind = Kind::near;
+    });
+    std::size_t near = 0;
+    for (const auto& B : blocks_) near += B.kind == Kind::near;
+    if (near > 100000)
+      throw Error(Errc::numerical_failure,
+                  "volume: the tolerance is too fine for the memory: " + std::to_string(near) +
+                      " lattice blocks of 512 vertices near the surface");
+    tbb::parallel_for(std::size_t(0), blocks_.size(), [&](std::size_t b) {
+      Block& B = blocks_[b];
+      if (B.kind != Kind::near) return;
+      B.value.resize(kBlock * kBlock * kBlock);
+      B.depth_at.resize(kBlock * kBlock * kBlock);
+      const auto [bi, bj, bk] = block_index(b);
+      std::size_t asked = 0;
+      fill(B, bi * kBlock, bj * kBlock, bk * kBlock, kBlock, asked);
+      queries += asked;
+    });
+  }
+
+  /// The values of the s^3 vertices from (i, j, k) on: one query at their centre settles
+  /// them all when they are all far out (as blocks are) or all inside V; else the eight
+  /// octants, down to single vertices.
+  void fill(Block& B, long i, long j, long k, int s, std::size_t& asked) const {
+    if (s == 1) {
+      const Eigen::Vector3d x = position(i, j, k);
+      const auto d = tree_.query(x, -1.01 * kSqrt3 * h_);
+      ++asked;
+      B.value[local(i, j, k)] = std::max(d.lower, box_distance(x));
+      B.depth_at[local(i, j, k)] =
+          d.signed_upper < 0 ? static_cast<float>(-d.signed_upper * (1 - 1e-6)) : 0.0f;
+      return;
+    }
+    const double r = 0.5 * (s - 1) * kSqrt3 * h_;
+    const Eigen::Vector3d c = position(i, j, k) + Eigen::Vector3d::Constant(0.5 * (s - 1) * h_);
+    const auto d = tree_.query(c, -r);
+    ++asked;
+    const double lower = std::max(d.lower, box_distance(c));
+    const double depth = d.signed_upper < 0 ? -d.signed_upper : 0;
+    const bool deep = depth >= r, far = lower - r >= tau_ + 2 * kSqrt3 * h_ + 2 * eps_;
+    if (deep || far) {
+      for (long a = i; a < i + s; ++a)
+        for (long b = j; b < j + s; ++b)
+          for (long e = k; e < k + s; ++e) {
+            const double to = (position(a, b, e) - c).norm();
+            B.value[local(a, b, e)] = deep ? 0.0 : lower - to;
+            B.depth_at[local(a, b, e)] =
+                deep ? static_cast<float>(std::max(0.0, (depth - to) * (1 - 1e-6))) : 0.0f;
+          }
+      return;
+    }
+    const int h = s / 2;
+    for (int o = 0; o < 8; ++o)
+      fill(B, i + (o & 1) * h, j + (o >> 1 & 1) * h, k + (o >> 2 & 1) * h, h, asked);
+  }
+
+  /// F at a vertex, moved below tau - eps when within eps of tau (lowering keeps it a lower
+  /// bound of the distance; no vertex then sits on the level).
+  double value(long i, long j, long k) const {
+    const Block& B = block(i, j, k);
+    double v;
+    switch (B.kind) {
+      case Kind::deep:
+        v = 0;
+        break;
+      case Kind::far:
+        v = B.lower - (position(i, j, k) - B.centre).norm();
+        break;
+      default:
+        v = B.value[local(i, j, k)];
+    }
+    return v < tau_ + eps_ ? std::min(v, tau_ - eps_) : v;
+  }
+
+  /// A certified depth inside V at a vertex (0: none known).
+  double depth(long i, long j, long k) const {
+    const Block& B = block(i, j, k);
+    switch (B.kind) {
+      case Kind::deep:
+        return B.depth - (position(i, j, k) - B.centre).norm();
+      case Kind::far:
+        return 0;
+      default:
+        return B.depth_at[local(i, j, k)];
+    }
+  }
+
+  Eigen::Vector3d position(long i, long j, long k) const {
+    return origin_ + h_ * Eigen::Vector3d(static_cast<double>(i), static_cast<double>(j),
+                                          static_cast<double>(k));
+  }
+
+  const long* n() const { return n_; }
+  const long* blocks_per_axis() const { return nb_; }
+  Kind kind(long bi, long bj, long bk) const {
+    if (bi >= nb_[0] || bj >= nb_[1] || bk >= nb_[2]) return Kind::far;
+    return blocks_[static_cast<std::size_t>((bi * nb_[1] + bj) * nb_[2] + bk)].kind;
+  }
+  double tau() const { return tau_; }
+  double h() const { return h_; }
+
+ private:
+  std::array<long, 3> block_index(std::size_t b) const {
+    const long l = static_cast<long>(b);
+    return {l / (nb_[1] * nb_[2]), (l / nb_[2]) % nb_[1], l % nb_[2]};
+  }
+  const Block& block(long i, long j, long k) const {
+    return blocks_[static_cast<std::size_t>(((i / kBlock) * nb_[1] + j / kBlock) * nb_[2] +
+                                            k / kBlock)];
+  }
+  static int local(long i, long j, long k) {
+    return static_cast<int>((i % kBlock) * 64 + (j % kBlock) * 8 + k % kBlock);
+  }
+  /// The distance from x to the box that holds V: a lower bound of the distance to V.
+  double box_distance(const Eigen::Vector3d& x) const {
+    return (x - x.cwiseMax(box_.min()).cwiseMin(box_.max())).norm();
+  }
+
+  const sweep::SweptVolumeTree& tree_;
+  Eigen::AlignedBox3d box_;
+  double h_, tau_, eps_;
+  Eigen::Vector3d origin_;
+  long n_[3] = {0, 0, 0}, nb_[3] = {0, 0, 0};
+  std::vector<Block> blocks_;
+};
+
+/// A volume of V certainly inside a lattice cube of edge h that has a vertex at depth d in V
+/// (the ball of radius d about that vertex lies in V): the ball's octant when d <= h, the
+/// cube [0, d / sqrt(3)]^3 the ball holds, the whole cube from d >= h sqrt(3).
+double inside_part(double d, double h) {
+  if (!(d > 0)) return 0;
+  const double octant = kPi / 6 * std::pow(std::min(d, h), 3);
+  return std::max(octant, std::pow(std::min(d / kSqrt3, h), 3));
+}
+
+struct Surface {
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<std::array<int, 3>> triangles;
+  double inside_volume = 0;  ///< of the lattice cubes certified inside V
+};
+
+/// Marching tetrahedra over the lattice's cubes that the level crosses (six Kuhn tetrahedra
+/// per cube, around its diagonal from corner 0 to corner 7).
+Surface extract(const Lattice& L) {
+  Surface s;
+  const long* n = L.n();
+  const long* nb = L.blocks_per_axis();
+  const double tau = L.tau(), h = L.h();
+  std::unordered_map<std::uint64_t, int> on_edge;
+  auto gid = [&](long i, long j, long k) {
+    return static_cast<std::uint64_t>((i * n[1] + j) * n[2] + k);
+  };
+  static const int kuhn[6][4] = {{0, 1, 3, 7}, {0, 1, 5, 7}, {0, 2, 3, 7},
+                                 {0, 2, 6, 7}, {0, 4, 5, 7}, {0, 4, 6, 7}};
+  const double cell = h * h * h;
+  for (long bi = 0; bi < nb[0]; ++bi)
+    for (long bj = 0; bj < nb[1]; ++bj)
+      for (long bk = 0; bk < nb[2]; ++bk) {
+        const auto own = L.kind(bi, bj, bk);
+        bool uniform = own != Lattice::Kind::near;
+        for (int c = 1; c < 8 && uniform; ++c)
+          uniform = L.kind(bi + (c & 1), bj + (c >> 1 & 1), bk + (c >> 2 & 1)) == own;
+        if (uniform) {
+          if (own == Lattice::Kind::deep) s.inside_volume += cell * kBlock * kBlock * kBlock;
+          continue;
+        }
+        for (long i = bi * kBlock; i < std::min((bi + 1) * kBlock, n[0] - 1); ++i)
+          for (long j = bj * kBlock; j < std::min((bj + 1) * kBlock, n[1] - 1); ++j)
+            for (long k = bk * kBlock; k < std::min((bk + 1) * kBlock, n[2] - 1); ++k) {
+              double v[8];
+              int inside = 0;
+              double deepest = 0;
+              for (int c = 0; c < 8; ++c) {
+                const long x = i + (c & 1), y = j + (c >> 1 & 1), z = k + (c >> 2 & 1);
+                v[c] = L.value(x, y, z);
+                inside += v[c] < tau;
+                deepest = std::max(deepest, L.depth(x, y, z));
+              }
+              s.inside_volume += inside_part(deepest, h);
+              if (inside == 0 || inside == 8) continue;
+              auto corner = [&](int c) {
+                return L.position(i + (c & 1), j + (c >> 1 & 1), k + (c >> 2 & 1));
+              };
+              // The surface's vertex on the edge from corner a to corner b (b's bits hold a's).
+              auto vertex = [&](int a, int b) {
+                const int lo = (a & b) == a ? a : b, hi = lo == a ? b : a;
+                const std::uint64_t key =
+                    gid(i + (lo & 1), j + (lo >> 1 & 1), k + (lo >> 2 & 1)) * 8 +
+                    static_cast<std::uint64_t>(lo ^ hi);
+                const auto [it, fresh] = on_edge.try_emplace(key, 0);
+                if (fresh) {
+                  const double s0 = (tau - v[lo]) / (v[hi] - v[lo]);
+                  it->second = static_cast<int>(s.vertices.size());
+                  s.vertices.push_back(corner(lo) + s0 * (corner(hi) - corner(lo)));
+                }
+                return it->second;
+              };
+              // Appends (a, b, c), or (a, c, b), whichever faces from `in` towards `out`.
+              auto triangle = [&](int a, int b, int c, const Eigen::Vector3d& toward) {
+                const Eigen::Vector3d &pa = s.vertices[a], &pb = s.vertices[b], &pc = s.vertices[c];
+                if ((pb - pa).cross(pc - pa).dot(toward) >= 0)
+                  s.triangles.push_back({a, b, c});
+                else
+                  s.triangles.push_back({a, c, b});
+              };
+              for (const auto& t : kuhn) {
+                int in[4], out[4], ni = 0, no = 0;
+                for (int c : t) (v[c] < tau ? in[ni++] : out[no++]) = c;
+                if (ni == 0 || no == 0) continue;
+                const Eigen::Vector3d toward = corner(out[0]) - corner(in[0]);
+                if (ni == 1) {
+                  triangle(vertex(in[0], out[0]), vertex(in[0], out[1]), vertex(in[0], out[2]),
+                           toward);
+                } else if (ni == 3) {
+                  triangle(vertex(in[0], out[0]), vertex(in[1], out[0]), vertex(in[2], out[0]),
+                           toward);
+                } else {  // a quadrilateral: i0o0, i0o1, i1o1, i1o0 in turn
+                  const int a = vertex(in[0], out[0]), b = vertex(in[0], out[1]),
+                            c = vertex(in[1], out[1]), d = vertex(in[1], out[0]);
+                  const Eigen::Vector3d &pa = s.vertices[a], &pb = s.vertices[b],
+                                        &pc = s.vertices[c], &pd = s.vertices[d];
+                  const Eigen::Vector3d normal =
+                      (pb - pa).cross(pc - pa) + (pc - pa).cross(pd - pa);
+                  if (normal.dot(toward) >= 0) {
+                    s.triangles.push_back({a, b, c});
+                    s.triangles.push_back({a, c, d});
+                  } else {
+                    s.triangles.push_back({a, c, b});
+                    s.triangles.push_back({a, d, c});
+                  }
+                }
+              }
+            }
+      }
+  return s;
+}
+
+/// The volume inside a closed, outward-oriented mesh (the divergence theorem about `o`).
+double enclosed_volume(const Surface& s, const Eigen::Vector3d& o) {
+  double v = 0;
+  for (const auto& t : s.triangles)
+    v += (s.vertices[t[0]] - o).dot((s.vertices[t[1]] - o).cross(s.vertices[t[2]] - o));
+  return v / 6;
+}
+
+/// The bounding box of V, sampled: the body's triangulation at 64 times a segment.
+Eigen::AlignedBox3d sampled_box(const Motion& m, const sweep::Body& body) {
+  const auto mesh = sweep::triangulate(body, 1e-2 * sweep::radius(body));
+  Eigen::AlignedBox3d box;
+  const int n = 64 * std::max(1, m.segments());
+  for (int i = 0; i <= n; ++i) {
+    const Eigen::Matrix4d f = m.frame(m.a() + (m.b() - m.a()) * i / n);
+    for (const auto& v : mesh.vertices)
+      box.extend(Eigen::Vector3d(f.block<3, 1>(1, 0) + f.block<3, 3>(1, 1) * v));
+  }
+  return box;
+}
+
+/// The smallest distance from x to the body placed at t in [t0, t1], by golden sections
+/// from the tree's best placement.
+double refined_distance(const sweep::SweptVolumeTree& tree, const Motion& m,
+                        const Eigen::Vector3d& x, const sweep::VolumeDistance& d) {
+  double lo = std::max(m.a(), d.t0 - (d.t1 - d.t0)), hi = std::min(m.b(), d.t1 + (d.t1 - d.t0));
+  const double g = 0.6180339887498949;
+  double a = hi - g * (hi - lo), b = lo + g * (hi - lo);
+  double fa = tree.placed_distance(x, a), fb = tree.placed_distance(x, b);
+  double best = std::min({d.signed_upper, fa, fb});
+  for (int it = 0; it < 40; ++it) {
+    if (fa < fb) {
+      hi = b;
+      b = a;
+      fb = fa;
+      a = hi - g * (hi - lo);
+      fa = tree.placed_distance(x, a);
+      best = std::min(best, fa);
+    } else {
+      lo = a;
+      a = b;
+      fa = fb;
+      b = lo + g * (hi - lo);
+      fb = tree.placed_distance(x, b);
+      best = std::min(best, fb);
+    }
+  }
+  return std::max(best, 0.0);
+}
+
+}  // namespace
+
+SweptVolume swept_volume(const Motion& motion, const sweep::Body& body, std::optional<double> tol) {
+  sweep::validate(body);
+  if (tol && (!(*tol > 0) || !std::isfinite(*tol)))
+    throw Error(Errc::invalid_input, "volume: the tolerance must be a positive length, got " +
+                                         kernel::detail::format_double(*tol));
+  if (motion.is_rational()) sweep::refuse_poles(motion.rational());
+  SweptVolume out;
+  const Eigen::AlignedBox3d sampled = sampled_box(motion, body);
+  out.tolerance = tol ? *tol : 1e-3 * sampled.diagonal().norm();
+  const double T = out.tolerance;
+  // The lattice's size before any work: its cells number (extent / h)^3, h about 0.8 T.
+  const Eigen::Vector3d cells = sampled.sizes() / (0.8 * T) + Eigen::Vector3d::Constant(8);
+  if (cells.prod() > 4e6 * 512)
+    throw Error(Errc::numerical_failure,
+                motion.label() + ": the tolerance " + kernel::detail::format_double(T) +
+                    " is too fine for the swept volume's extent " +
+                    kernel::detail::format_double(sampled.diagonal().norm()) +
+                    " (a lattice of about " + kernel::detail::format_double(cells.prod()) +
+                    " cells): raise --tol");
+  const sweep::SweptVolumeTree tree(motion, body, 0.1 * T);
+  out.time_pieces = tree.leaves();
+  out.piece_delta = tree.largest_leaf_delta();
+  const Eigen::AlignedBox3d box = tree.bounds();
+  const double scale = box.diagonal().norm();
+  std::atomic<std::size_t> queries{0};
+  // The vertices sit near the level tau = h sqrt(3) / 2, plus up to twice the leaves' radius
+  // (0.1 T) where the lower bound is loose; measured, about 1.2 tau. Start with tau = 0.72 T
+  // and make the lattice finer while a vertex's bound exceeds T.
+  double h = 2 * 0.72 * T / kSqrt3;
+  for (out.rounds = 1;; ++out.rounds) {
+    const double tau = 0.5 * kSqrt3 * h * (1 + 1e-9) + 1e-12 * scale;
+    Lattice lattice(tree, box, h, tau);
+    lattice.evaluate(queries);
+    Surface s = extract(lattice);
+    if (s.triangles.size() > 10'000'000)
+      throw Error(Errc::numerical_failure,
+                  motion.label() + ": the enclosing mesh within the tolerance " +
+                      kernel::detail::format_double(T) + " would have more than 10^7 triangles (" +
+                      std::to_string(s.triangles.size()) + "): raise --tol");
+    // Each vertex's distance to V, bounded from above by the best placement the tree finds.
+    std::vector<sweep::VolumeDistance> at(s.vertices.size());
+    tbb::parallel_for(std::size_t(0), s.vertices.size(),
+                      [&](std::size_t v) { at[v] = tree.query(s.vertices[v], -HUGE_VAL); });
+    queries += s.vertices.size();
+    double bound = 0;
+    for (const auto& d : at) bound = std::max(bound, std::max(d.signed_upper, 0.0));
+    // Rounding of the placement and the distance: relative 1e-12 of the scene.
+    bound += 1e-12 * scale;
+    if (bound <= T || out.rounds == 4) {
+      if (bound > T)
+        throw Error(Errc::numerical_failure,
+                    motion.label() + ": no lattice brought every vertex within the tolerance " +
+                        kernel::detail::format_double(T) + " (best " +
+                        kernel::detail::format_double(bound) + ")");
+      out.distance_bound = bound;
+      out.grid_step = h;
+      out.level = tau;
+      // Measured beside the bound: up to 20 000 vertices, refined along t.
+      const std::size_t stride = std::max<std::size_t>(1, s.vertices.size() / 20000);
+      std::vector<double> measured((s.vertices.size() + stride - 1) / stride, 0.0);
+      tbb::parallel_for(std::size_t(0), measured.size(), [&](std::size_t i) {
+        measured[i] = refined_distance(tree, motion, s.vertices[i * stride], at[i * stride]);
+      });
+      for (double m : measured) out.measured_distance = std::max(out.measured_distance, m);
+      out.measured_vertices = measured.size();
+      const Eigen::Vector3d o = box.center();
+      const double enclosed = enclosed_volume(s, o);
+      out.volume_upper = enclosed * (1 + 1e-9);
+      out.volume_lower = std::min(s.inside_volume * (1 - 1e-9), out.volume_upper);
+      out.vertices = std::move(s.vertices);
+      out.triangles = std::move(s.triangles);
+      out.distance_queries = queries;
+      return out;
+    }
+    h *= 0.85 * std::min(1.0, T / bound);
+  }
+}
+
+nlohmann::json VolumeReport::report() const {
+  const auto& v = volume;
+  return {{"output", path},
+          {"body", body},
+          {"units", units},
+          {"tolerance", v.tolerance},
+          {"distance_bound", v.distance_bound},
+          {"measured_distance", v.measured_distance},
+          {"measured_vertices", v.measured_vertices},
+          {"volume_bounds", {v.volume_lower, v.volume_upper}},
+          {"triangles", triangles},
+          {"vertices", vertices},
+          {"closed", closed},
+          {"route",
+           "marching tetrahedra on a certified lower bound of the distance to the swept volume "
+           "(docs/geometry.md, Swept volumes)"},
+          {"grid_step", v.grid_step},
+          {"level", v.level},
+          {"time_pieces", v.time_pieces},
+          {"piece_radius", v.piece_delta},
+          {"distance_queries", v.distance_queries},
+          {"rounds", v.rounds},
+          {"seconds", seconds}};
+}
+
+VolumeReport volume(const Motion& motion, const VolumeOptions& o) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::string ext = io::lower_extension(o.output);
+  if (ext == ".step" || ext == ".stp" || ext == ".igs" || ext == ".iges")
+    throw Error(Errc::invalid_input,
+                o.output +
+                    ": swept volumes are written as meshes (.stl, .obj, .ply) or .json; "
+                    "exact STEP/IGES faces are not built yet for any body");
+  if (!io::is_mesh_path(o.output) && ext != ".json")
+    throw Error(Errc::invalid_input,
+                o.output + ": unknown volume format (expected .stl, .obj, .ply or .json)");
+  if (o.body.empty())
+    throw Error(Errc::invalid_input, "volume: --body is required (sphere:r, box:a,b,c, ...)");
+  VolumeReport r;
+  r.path = o.output;
+  r.units = o.units.empty() ? motion.units() : io::canonical_unit(o.units, "--units");
+  const double f = io::unit_factor(motion.units(), r.units);  // motion unit -> output unit
+  if (o.tol && (!(*o.tol > 0) || !std::isfinite(*o.tol)))
+    throw Error(Errc::invalid_input, "--tol: the tolerance must be a positive length, got " +
+                                         kernel::detail::format_double(*o.tol));
+  if (motion.is_rational()) sweep::refuse_poles(motion.rational());
+  const sweep::Body body = io::read_body(o.body);
+  r.body = body.spec;
+  std::optional<double> tol;
+  if (o.tol) tol = *o.tol / f;
+  SweptVolume v = swept_volume(motion, body, tol);
+  io::Mesh mesh;
+  mesh.vertices.reserve(v.vertices.size());
+  for (const auto& x : v.vertices) mesh.vertices.push_back(f * x);
+  mesh.triangles = std::move(v.triangles);
+  v.vertices.clear();
+  for (double* x : {&v.tolerance, &v.distance_bound, &v.measured_distance, &v.grid_step, &v.level,
+                    &v.piece_delta})
+    *x *= f;
+  v.volume_lower *= f * f * f;
+  v.volume_upper *= f * f * f;
+  r.volume = v;
+  r.triangles = mesh.triangles.size();
+  r.vertices = mesh.vertices.size();
+  r.closed = true;  // by construction (the tests check it with CGAL)
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (ext == ".json") {
+    nlohmann::json j = {{"kind", "swept_volume_mesh"}, {"units", r.units}, {"body", r.body}};
+    j["report"] = r.report();
+    nlohmann::json verts = nlohmann::json::array(), tris = nlohmann::json::array();
+    for (const auto& x : mesh.vertices) verts.push_back({x.x(), x.y(), x.z()});
+    for (const auto& t : mesh.triangles) tris.push_back({t[0], t[1], t[2]});
+    j["vertices"] = std::move(verts);
+    j["triangles"] = std::move(tris);
+    io::write_file_atomic(o.output, j.dump() + "\n");
+  } else {
+    io::write_mesh(o.output, mesh, o.ascii);
+  }
+  return r;
+}
+
+}  // namespace qmotion

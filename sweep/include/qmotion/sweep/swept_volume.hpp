@@ -1,0 +1,223 @@
+// <qmotion/sweep/swept_volume.hpp>: how far a point is from the space a moving body sweeps,
+// { M(t) x : t in [a, b], x in the body }, with certified lower and upper bounds
+// (docs/geometry.md, "Swept volumes").
+#pragma once
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <qmotion/kernel/error.hpp>
+#include <qmotion/motion.hpp>
+#include <qmotion/sweep/body.hpp>
+#include <qmotion/sweep/keyframes.hpp>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace qmotion::sweep {
+
+/// What a query learns of the distance f(q) from a point q to the swept volume V:
+/// lower <= f(q) (certified: V lies in the union of sets the query measured against), and,
+/// from the body placed by the exact motion at the parameter t, signed = the signed distance
+/// from q to M(t) K, so f(q) <= max(signed, 0), and q lies in V with a ball of radius
+/// -signed about it when signed < 0.
+struct VolumeDistance {
+  double lower = 0;
+  double signed_upper = HUGE_VAL;
+  double t = 0;           ///< where signed_upper was found
+  double t0 = 0, t1 = 0;  ///< the finest interval of t searched there
+};
+
+/// A binary tree over the motion's parameter: every node is an interval [t0, t1] of one
+/// segment, with the body placed at its middle, M(tm) K, and a radius Delta such that every
+/// point of the body stays within Delta of where M(tm) puts it over the interval:
+/// |M(t) x - M(tm) x| <= Delta for t in [t0, t1], |x| <= rho (rho: sweep::radius). So the
+/// piece of V swept over the node lies in M(tm) K grown by Delta, and the distance from q to
+/// it is at least sd_K(M(tm)^-1 q) - Delta.
+///
+/// Delta comes from KeyframeBound between the exact poses at t0 and t1 (the certified
+/// deviation delta of the motion from the player's blend S: translation linear, rotation
+/// spherical): |M(t) x - M(tm) x| <= |M(t) x - S(t) x| + |S(t) x - S(tm) x| + |S(tm) x -
+/// M(tm) x| <= 2 delta + |p1 - p0| / 2 + rho |q1 - q0|, since the blend turns by at most
+/// half the angle phi between the ends from its middle, and |q1 - q0| = 2 sin(phi / 4).
+/// Leaves are split until Delta <= the requested leaf size.
+class SweptVolumeTree {
+ public:
+  struct Node {
+    double t0 = 0, t1 = 0, tm = 0;
+    Eigen::Matrix3d Rt = Eigen::Matrix3d::Identity();  ///< M(tm)'s rotation, transposed
+    Eigen::Vector3d p = Eigen::Vector3d::Zero();       ///< M(tm)'s translation
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< of the placed body's bounding ball
+    double delta = HUGE_VAL;
+    int child[2] = {-1, -1};
+  };
+
+  /// Errc::numerical_failure for a rational motion with a pole on its interval, or when a
+  /// node narrower than 1e-12 of the interval cannot reach the leaf size.
+  SweptVolumeTree(const qmotion::Motion& m, const Body& body, double leaf_delta)
+      : motion_(m), body_(body), rho_(radius(body)), bound_(m, radius(body), 4), leaf_(leaf_delta) {
+    ball_centre_ = ball_centre(body);
+    ball_radius_ = 0;
+    for (const auto& v : triangulate(body, 1e-3 * rho_).vertices)
+      ball_radius_ = std::max(ball_radius_, (v - ball_centre_).norm());
+    // The triangulation's vertices lie on the body; its curved parts bulge out by at most
+    // 1e-3 rho between them.
+    ball_radius_ += 1e-3 * rho_ + 1e-12 * rho_;
+    const auto x = m.breakpoints();
+    for (std::size_t i = 0; i + 1 < x.size(); ++i) roots_.push_back(build(x[i], x[i + 1], 0));
+  }
+
+  const std::vector<Node>& nodes() const { return nodes_; }
+  const std::vector<int>& roots() const { return roots_; }
+  std::size_t leaves() const { return leaves_; }
+  double leaf_delta() const { return leaf_; }
+  double largest_leaf_delta() const { return largest_leaf_; }
+  const Body& body() const { return body_; }
+  double body_ball_radius() const { return ball_radius_; }
+
+  /// An axis-aligned box holding V: the leaves' bounding balls grown by their Delta.
+  Eigen::AlignedBox3d bounds() const {
+    Eigen::AlignedBox3d box;
+    for (const auto& n : nodes_)
+      if (n.child[0] < 0) {
+        const double r = ball_radius_ + n.delta;
+        box.extend(n.centre - Eigen::Vector3d::Constant(r));
+        box.extend(n.centre + Eigen::Vector3d::Constant(r));
+      }
+    return box;
+  }
+
+  /// Bounds of the distance from q to V by branch and bound over the tree. A node is not
+  /// opened when its lower bound is no better than an upper bound already found. The search
+  /// ends at the first placement whose signed distance is below stop_below (<= 0: q lies
+  /// in V that deep; then lower = 0).
+  VolumeDistance query(const Eigen::Vector3d& q, double stop_below = 0) const {
+    VolumeDistance out;
+    out.lower = HUGE_VAL;
+    thread_local std::vector<std::pair<int, double>> stack;  // node, its parent's bound
+    stack.clear();
+    double best = HUGE_VAL;  // the smallest upper bound so far (signed)
+    for (auto r = roots_.rbegin(); r != roots_.rend(); ++r) stack.emplace_back(*r, -HUGE_VAL);
+    while (!stack.empty()) {
+      const auto [i, parent_lb] = stack.back();
+      stack.pop_back();
+      const Node& n = nodes_[i];
+      if (parent_lb >= std::max(best, 0.0)) {  // the parent's bound already says no
+        out.lower = std::min(out.lower, parent_lb);
+        continue;
+      }
+      // A cheap bound from the bounding ball, then the body itself.
+      const double ball = (q - n.centre).norm() - ball_radius_ - n.delta;
+      if (ball >= std::max(best, 0.0)) {
+        out.lower = std::min(out.lower, ball);
+        continue;
+      }
+      const double sd = signed_distance(body_, n.Rt * (q - n.p));
+      const double lb = std::max(ball, sd - n.delta);
+      if (sd < best) {
+        best = sd;
+        out.signed_upper = sd;
+        out.t = n.tm;
+        out.t0 = n.t0;
+        out.t1 = n.t1;
+      }
+      if (best < stop_below) {
+        out.lower = 0;
+        return out;
+      }
+      if (n.child[0] < 0 || lb >= std::max(best, 0.0)) {
+        out.lower = std::min(out.lower, lb);
+        continue;
+      }
+      // Children: the nearer one last, so it is opened first.
+      const Node &c0 = nodes_[n.child[0]], &c1 = nodes_[n.child[1]];
+      const bool first0 = (q - c0.centre).squaredNorm() < (q - c1.centre).squaredNorm();
+      stack.emplace_back(first0 ? n.child[1] : n.child[0], lb);
+      stack.emplace_back(first0 ? n.child[0] : n.child[1], lb);
+    }
+    out.lower = std::max(0.0, std::min(out.lower, std::max(best, 0.0)));
+    return out;
+  }
+
+  /// The signed distance from q to the body placed by the exact motion at t.
+  double placed_distance(const Eigen::Vector3d& q, double t) const {
+    const Eigen::Matrix4d f = motion_.frame(t);
+    return signed_distance(body_, f.block<3, 3>(1, 1).transpose() * (q - f.block<3, 1>(1, 0)));
+  }
+
+ private:
+  static Eigen::Vector3d ball_centre(const Body& b) {
+    using K = Body::Kind;
+    switch (b.kind) {
+      case K::cylinder:
+        return {0, 0, b.h / 2};
+      case K::flat_cutter:
+      case K::ball_cutter:
+      case K::bull_cutter:
+        return {0, 0, b.L / 2};
+      case K::mesh: {
+        Eigen::AlignedBox3d box;
+        for (const auto& v : b.mesh.vertices) box.extend(v);
+        return box.center();
+      }
+      default:
+        return Eigen::Vector3d::Zero();
+    }
+  }
+
+  int build(double t0, double t1, int depth) {
+    const double range = motion_.b() - motion_.a();
+    Node n;
+    n.t0 = t0;
+    n.t1 = t1;
+    n.tm = 0.5 * (t0 + t1);
+    const Keyframe k0 = exact_key(motion_, t0, nullptr);
+    const Keyframe k1 = exact_key(motion_, t1, &k0);
+    const double delta = bound_(k0, k1);
+    n.delta = (2 * delta + 0.5 * (k1.translation - k0.translation).norm() +
+               rho_ * (k1.rotation.coeffs() - k0.rotation.coeffs()).norm()) *
+              (1 + 1e-12);
+    if (!std::isfinite(n.delta)) n.delta = HUGE_VAL;
+    const Eigen::Matrix4d f = motion_.frame(n.tm);
+    n.Rt = f.block<3, 3>(1, 1).transpose();
+    n.p = f.block<3, 1>(1, 0);
+    n.centre = n.p + f.block<3, 3>(1, 1) * ball_centre_;
+    const int index = static_cast<int>(nodes_.size());
+    nodes_.push_back(n);
+    if (n.delta <= leaf_) {
+      ++leaves_;
+      largest_leaf_ = std::max(largest_leaf_, n.delta);
+      return index;
+    }
+    if (t1 - t0 < 1e-12 * range || depth > 60)
+      throw Error(Errc::numerical_failure,
+                  motion_.label() + ": cannot bound the swept volume within " +
+                      kernel::detail::format_double(leaf_) + " near t = " +
+                      kernel::detail::format_double(n.tm) + " (a pole, or a tolerance too fine)");
+    if (nodes_.size() > max_nodes)
+      throw Error(Errc::numerical_failure,
+                  motion_.label() + ": more than " + std::to_string(max_nodes) +
+                      " parameter intervals to bound the swept volume within " +
+                      kernel::detail::format_double(leaf_) + ": the tolerance is too fine");
+    const int c0 = build(t0, n.tm, depth + 1);
+    const int c1 = build(n.tm, t1, depth + 1);
+    nodes_[index].child[0] = c0;
+    nodes_[index].child[1] = c1;
+    return index;
+  }
+
+  static constexpr std::size_t max_nodes = 1 << 22;
+  const qmotion::Motion& motion_;
+  const Body& body_;
+  double rho_;
+  KeyframeBound bound_;
+  double leaf_;
+  Eigen::Vector3d ball_centre_ = Eigen::Vector3d::Zero();
+  double ball_radius_ = 0;
+  std::vector<Node> nodes_;
+  std::vector<int> roots_;
+  std::size_t leaves_ = 0;
+  double largest_leaf_ = 0;
+};
+
+}  // namespace qmotion::sweep

@@ -1,0 +1,177 @@
+// The swept volume against the route a user takes today (issue 31): stamp the body at N
+// times and union the stamps with OpenVDB (meshToLevelSet, csgUnion, volumeToMesh), at a
+// voxel size equal to qmotion's tolerance T. On one sample of the true swept volume (points
+// on and inside the body at random times, drawn from the body's own fine triangulation),
+// each result is asked which points it misses:
+// - qmotion's mesh by CGAL's Side_of_triangle_mesh;
+// - the stamped level set by its own sign, trilinear, with the distance outside.
+// Beside that: each mesh's vertices' distance to the swept volume (at most 4000 vertices,
+// the upper bound of sweep::SweptVolumeTree), the triangles, and the time.
+// Prints a Markdown table (tests/bench/bench_page.py puts it into docs/benchmarks.md);
+// --smoke runs one short case (CTest).
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Side_of_triangle_mesh.h>
+#include <CGAL/Surface_mesh.h>
+#include <openvdb/openvdb.h>
+#include <openvdb/tools/Composite.h>
+#include <openvdb/tools/Interpolation.h>
+#include <openvdb/tools/MeshToVolume.h>
+#include <openvdb/tools/VolumeToMesh.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <qmotion/io/bodies.hpp>
+#include <qmotion/qmotion.hpp>
+#include <qmotion/sweep/swept_volume.hpp>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace {
+
+using V3 = Eigen::Vector3d;
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using CgalMesh = CGAL::Surface_mesh<K::Point_3>;
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+qmotion::Motion helix(int poses) {
+  auto p = qmotion::io::read_poses(std::string(QMOTION_TEST_DATA) + "/poses/helix_40.json");
+  p.poses.resize(static_cast<std::size_t>(poses));
+  return qmotion::interpolate(p, {}).motion;
+}
+
+struct Result {
+  std::string what;
+  double seconds = 0;
+  std::size_t triangles = 0;
+  int missed = 0;
+  double missed_by = 0;     // the largest distance outside of a missed point
+  double vertex_worst = 0;  // the largest distance of a vertex to the swept volume
+};
+
+/// The largest distance to the swept volume over at most 4000 of the vertices.
+double vertex_distance(const qmotion::sweep::SweptVolumeTree& tree,
+                       const std::vector<V3>& vertices) {
+  double worst = 0;
+  const std::size_t stride = std::max<std::size_t>(1, vertices.size() / 4000);
+  for (std::size_t i = 0; i < vertices.size(); i += stride)
+    worst = std::max(worst, std::max(0.0, tree.query(vertices[i], -HUGE_VAL).signed_upper));
+  return worst;
+}
+
+void run_case(const char* body_spec, int poses, const std::vector<int>& stamps, double T_rel,
+              std::FILE* out) {
+  const qmotion::Motion m = helix(poses);
+  const qmotion::sweep::Body body = qmotion::io::read_body(body_spec);
+  const double rho = qmotion::sweep::radius(body);
+  // The sample: 20 000 points of the swept volume, on the body's boundary (vertices of a
+  // triangulation within 1e-4 rho, which lie on it) and between two of them (inside).
+  const auto fine = qmotion::sweep::triangulate(body, 1e-4 * rho);
+  std::mt19937 g(2026);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::uniform_int_distribution<std::size_t> pick(0, fine.vertices.size() - 1);
+  std::vector<V3> sample;
+  Eigen::AlignedBox3d box;
+  for (int i = 0; i < 20000; ++i) {
+    const double t = m.a() + (m.b() - m.a()) * u(g);
+    const V3 x = i % 2 ? fine.vertices[pick(g)]
+                       : V3(0.5 * (fine.vertices[pick(g)] + fine.vertices[pick(g)]));
+    sample.push_back(m.place(t, x));
+    box.extend(sample.back());
+  }
+  const double T = T_rel * box.diagonal().norm();
+  const qmotion::sweep::SweptVolumeTree tree(m, body, 0.1 * T);
+  std::vector<Result> rows;
+
+  {  // qmotion
+    Result r;
+    r.what = "qmotion `volume`";
+    const auto t0 = std::chrono::steady_clock::now();
+    const qmotion::SweptVolume v = qmotion::swept_volume(m, body, T);
+    r.seconds = seconds_since(t0);
+    r.triangles = v.triangles.size();
+    CgalMesh cm;
+    std::vector<CgalMesh::Vertex_index> idx;
+    for (const auto& p : v.vertices) idx.push_back(cm.add_vertex(K::Point_3(p.x(), p.y(), p.z())));
+    for (const auto& t : v.triangles) cm.add_face(idx[t[0]], idx[t[1]], idx[t[2]]);
+    const CGAL::Side_of_triangle_mesh<CgalMesh, K> side(cm);
+    for (const V3& x : sample)
+      r.missed += side(K::Point_3(x.x(), x.y(), x.z())) == CGAL::ON_UNBOUNDED_SIDE;
+    r.vertex_worst = vertex_distance(tree, v.vertices);
+    rows.push_back(r);
+  }
+
+  // The stamps: the body's triangulation within T / 4, placed at N + 1 even times.
+  const auto coarse = qmotion::sweep::triangulate(body, 0.25 * T);
+  std::vector<openvdb::Vec3I> tris;
+  for (const auto& t : coarse.triangles)
+    tris.emplace_back(static_cast<openvdb::Index32>(t[0]), static_cast<openvdb::Index32>(t[1]),
+                      static_cast<openvdb::Index32>(t[2]));
+  const auto xform = openvdb::math::Transform::createLinearTransform(T);
+  for (int N : stamps) {
+    Result r;
+    r.what = "OpenVDB, " + std::to_string(N) + " stamps";
+    const auto t0 = std::chrono::steady_clock::now();
+    openvdb::FloatGrid::Ptr grid;
+    for (int i = 0; i <= N; ++i) {
+      const Eigen::Matrix4d f = m.frame(m.a() + (m.b() - m.a()) * i / N);
+      std::vector<openvdb::Vec3s> pts;
+      for (const auto& v : coarse.vertices) {
+        const V3 p = f.block<3, 1>(1, 0) + f.block<3, 3>(1, 1) * v;
+        pts.emplace_back(static_cast<float>(p.x()), static_cast<float>(p.y()),
+                         static_cast<float>(p.z()));
+      }
+      auto stamp = openvdb::tools::meshToLevelSet<openvdb::FloatGrid>(*xform, pts, tris, 3.0f);
+      if (!grid)
+        grid = stamp;
+      else
+        openvdb::tools::csgUnion(*grid, *stamp);
+    }
+    std::vector<openvdb::Vec3s> points;
+    std::vector<openvdb::Vec3I> triangles;
+    std::vector<openvdb::Vec4I> quads;
+    openvdb::tools::volumeToMesh(*grid, points, triangles, quads, 0.0);
+    r.seconds = seconds_since(t0);
+    r.triangles = triangles.size() + 2 * quads.size();
+    const openvdb::tools::GridSampler<openvdb::FloatGrid, openvdb::tools::BoxSampler> sampler(
+        *grid);
+    for (const V3& x : sample) {
+      const float phi = sampler.wsSample(openvdb::Vec3R(x.x(), x.y(), x.z()));
+      if (phi > 0) {
+        ++r.missed;
+        r.missed_by = std::max(r.missed_by, static_cast<double>(phi));
+      }
+    }
+    std::vector<V3> verts;
+    for (const auto& p : points) verts.emplace_back(p.x(), p.y(), p.z());
+    r.vertex_worst = vertex_distance(tree, verts);
+    rows.push_back(r);
+  }
+  std::fprintf(out, "\n%s on the %d-pose helix, T = %.4g mm (%.0e of the diagonal):\n\n", body_spec,
+               poses, T, T_rel);
+  std::fprintf(out,
+               "| method | time (s) | triangles | missed of 20 000 | missed by (mm) | vertex "
+               "distance (mm) | time / qmotion's |\n| --- | --- | --- | --- | --- | --- | --- |\n");
+  for (const auto& r : rows)
+    std::fprintf(out, "| %s | %.3f | %zu | %d | %.3g | %.3g | %.2f |\n", r.what.c_str(), r.seconds,
+                 r.triangles, r.missed, r.missed_by, r.vertex_worst,
+                 r.seconds / rows.front().seconds);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  openvdb::initialize();
+  const bool smoke = argc > 1 && std::strcmp(argv[1], "--smoke") == 0;
+  if (smoke) {
+    run_case("cutter:ball,6,20", 5, {10}, 8e-3, stdout);
+    return 0;
+  }
+  run_case("cutter:ball,6,20", 8, {10, 100, 1000}, 4e-3, stdout);
+  run_case("box:4,6,8", 8, {10, 100, 1000}, 4e-3, stdout);
+  return 0;
+}
