@@ -48,9 +48,9 @@ struct Result {
   std::string what;
   double seconds = 0;
   std::size_t triangles = 0;
-  int missed = 0;
-  double missed_by = 0;     // the largest distance outside of a missed point
-  double vertex_worst = 0;  // the largest distance of a vertex to the swept volume
+  int missed = 0, missed_inside = 0;  // of all points; of those inside the body
+  double missed_by = 0;               // the largest distance outside of a missed point
+  double vertex_worst = 0;            // the largest distance of a vertex to the swept volume
 };
 
 /// The largest distance to the swept volume over at most 4000 of the vertices.
@@ -63,8 +63,9 @@ double vertex_distance(const qmotion::sweep::SweptVolumeTree& tree,
   return worst;
 }
 
-void run_case(const char* body_spec, int poses, const std::vector<int>& stamps, double T_rel,
-              std::FILE* out) {
+/// Returns how many sample points qmotion's mesh misses (certified: none).
+int run_case(const char* body_spec, int poses, const std::vector<int>& stamps, double T_rel,
+             std::FILE* out) {
   const qmotion::Motion m = helix(poses);
   const qmotion::sweep::Body body = qmotion::io::read_body(body_spec);
   const double rho = qmotion::sweep::radius(body);
@@ -99,8 +100,12 @@ void run_case(const char* body_spec, int poses, const std::vector<int>& stamps, 
     for (const auto& p : v.vertices) idx.push_back(cm.add_vertex(K::Point_3(p.x(), p.y(), p.z())));
     for (const auto& t : v.triangles) cm.add_face(idx[t[0]], idx[t[1]], idx[t[2]]);
     const CGAL::Side_of_triangle_mesh<CgalMesh, K> side(cm);
-    for (const V3& x : sample)
-      r.missed += side(K::Point_3(x.x(), x.y(), x.z())) == CGAL::ON_UNBOUNDED_SIDE;
+    for (std::size_t i = 0; i < sample.size(); ++i) {
+      const V3& x = sample[i];
+      const bool out = side(K::Point_3(x.x(), x.y(), x.z())) == CGAL::ON_UNBOUNDED_SIDE;
+      r.missed += out;
+      r.missed_inside += out && i % 2 == 0;
+    }
     r.vertex_worst = vertex_distance(tree, v.vertices);
     rows.push_back(r);
   }
@@ -139,10 +144,12 @@ void run_case(const char* body_spec, int poses, const std::vector<int>& stamps, 
     r.triangles = triangles.size() + 2 * quads.size();
     const openvdb::tools::GridSampler<openvdb::FloatGrid, openvdb::tools::BoxSampler> sampler(
         *grid);
-    for (const V3& x : sample) {
+    for (std::size_t i = 0; i < sample.size(); ++i) {
+      const V3& x = sample[i];
       const float phi = sampler.wsSample(openvdb::Vec3R(x.x(), x.y(), x.z()));
       if (phi > 0) {
         ++r.missed;
+        r.missed_inside += i % 2 == 0;
         r.missed_by = std::max(r.missed_by, static_cast<double>(phi));
       }
     }
@@ -154,12 +161,14 @@ void run_case(const char* body_spec, int poses, const std::vector<int>& stamps, 
   std::fprintf(out, "\n%s on the %d-pose helix, T = %.4g mm (%.0e of the diagonal):\n\n", body_spec,
                poses, T, T_rel);
   std::fprintf(out,
-               "| method | time (s) | triangles | missed of 20 000 | missed by (mm) | vertex "
-               "distance (mm) | time / qmotion's |\n| --- | --- | --- | --- | --- | --- | --- |\n");
+               "| method | time (s) | triangles | missed of 20 000 (of the 10 000 inside the "
+               "body) | missed by (mm) | vertex distance (mm) | time / qmotion's |\n"
+               "| --- | --- | --- | --- | --- | --- | --- |\n");
   for (const auto& r : rows)
-    std::fprintf(out, "| %s | %.3f | %zu | %d | %.3g | %.3g | %.2f |\n", r.what.c_str(), r.seconds,
-                 r.triangles, r.missed, r.missed_by, r.vertex_worst,
+    std::fprintf(out, "| %s | %.3f | %zu | %d (%d) | %.3g | %.3g | %.2f |\n", r.what.c_str(),
+                 r.seconds, r.triangles, r.missed, r.missed_inside, r.missed_by, r.vertex_worst,
                  r.seconds / rows.front().seconds);
+  return rows.front().missed;
 }
 
 }  // namespace
@@ -167,11 +176,13 @@ void run_case(const char* body_spec, int poses, const std::vector<int>& stamps, 
 int main(int argc, char** argv) {
   openvdb::initialize();
   const bool smoke = argc > 1 && std::strcmp(argv[1], "--smoke") == 0;
+  int missed = 0;
   if (smoke) {
-    run_case("cutter:ball,6,20", 5, {10}, 8e-3, stdout);
-    return 0;
+    missed += run_case("cutter:ball,6,20", 5, {10}, 8e-3, stdout);
+  } else {
+    missed += run_case("cutter:ball,6,20", 8, {10, 100, 1000}, 4e-3, stdout);
+    missed += run_case("box:4,6,8", 8, {10, 100, 1000}, 4e-3, stdout);
   }
-  run_case("cutter:ball,6,20", 8, {10, 100, 1000}, 4e-3, stdout);
-  run_case("box:4,6,8", 8, {10, 100, 1000}, 4e-3, stdout);
-  return 0;
+  if (missed > 0) std::fprintf(stderr, "openvdb_peer: qmotion's mesh missed %d points\n", missed);
+  return missed > 0 ? 1 : 0;
 }
