@@ -10,12 +10,14 @@
 #include <CGAL/Surface_mesh.h>
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <cmath>
 #include <iostream>
 #include <map>
 #include <qmotion/io/bodies.hpp>
 #include <qmotion/qmotion.hpp>
 #include <random>
+#include <string>
 
 #include "io_test_util.hpp"
 
@@ -195,7 +197,14 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"box:4,6,8", false}, Case{"cylinder:2,10", true},
                       Case{"cutter:flat,6,20", false}, Case{"cutter:ball,6,20", true},
                       Case{"cutter:ball,6,20", false}, Case{"cutter:bull,6,1,20", true},
-                      Case{"@bodies/tetra.obj", true}, Case{"@bodies/tetra.obj", false}));
+                      Case{"@bodies/tetra.obj", true}, Case{"@bodies/tetra.obj", false}),
+    [](const ::testing::TestParamInfo<Case>& info) {
+      // "cutter:ball,6,20" on a rational motion -> "cutter_ball_6_20_rational"
+      std::string name = info.param.body[0] == '@' ? info.param.body + 8 : info.param.body;
+      for (char& ch : name)
+        if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+      return name + (info.param.rational ? "_rational" : "_kks");
+    });
 
 /// The tube formula: a sphere of radius r whose centre runs a curve of length L with
 /// curvature radius above r and no overlap sweeps pi r^2 L + 4/3 pi r^3.
