@@ -502,7 +502,6 @@ VolumeReport volume(const Motion& motion, const VolumeOptions& o) {
   if (o.tol && (!(*o.tol > 0) || !std::isfinite(*o.tol)))
     throw Error(Errc::invalid_input, "--tol: the tolerance must be a positive length, got " +
                                          kernel::detail::format_double(*o.tol));
-  if (motion.is_rational()) sweep::refuse_poles(motion.rational());
   const sweep::Body body = io::read_body(o.body);
   r.body = body.spec;
   std::optional<double> tol;
