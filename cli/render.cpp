@@ -2,6 +2,8 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 #include <memory>
+#include <optional>
+#include <qmotion/api/volume.hpp>
 #include <qmotion/io/profiles.hpp>
 #include <qmotion/io/qspline_file.hpp>
 #include <qmotion/kernel/error.hpp>
@@ -15,9 +17,11 @@ Command add_render(CLI::App& app) {
   auto* sub = app.add_subcommand(
       "render",
       "Draw the motion as SVG or PNG: the object at evenly spaced times, the key poses "
-      "numbered, trajectories, the swept surface as shaded iso-lines, axes and a scale bar");
+      "numbered, trajectories, the swept surface as shaded iso-lines, a body's swept volume, "
+      "axes and a scale bar");
   struct Options {
-    std::string motion, profile, size;
+    std::string motion, profile, size, body;
+    std::optional<double> body_tol;
     std::vector<std::string> points;
     render::RenderOptions options;
   };
@@ -41,6 +45,12 @@ Command add_render(CLI::App& app) {
                   "towards the viewer");
   sub->add_option("--size", o->size, "Figure size W,H in pixels (default 960,720)");
   sub->add_option("--title", o->options.title, "Title (default: the motion's name and kind)");
+  sub->add_option("--body", o->body,
+                  "Draw the swept volume of this body (as `volume --body`): its enclosing mesh, "
+                  "shaded");
+  sub->add_option("--body-tol", o->body_tol,
+                  "The drawn volume's tolerance, in the motion's unit (default 1e-2 of its "
+                  "diagonal)");
   return {sub, [o] {
             if (!o->size.empty())
               std::tie(o->options.width, o->options.height) = render::parse_size(o->size);
@@ -48,7 +58,9 @@ Command add_render(CLI::App& app) {
               o->options.points.push_back(io::parse_point(p, "--point"));
             const Motion m = io::load_motion(o->motion);
             if (!o->profile.empty()) o->options.profile = io::read_profile(o->profile, m.units());
-            const auto r = render::render(m, o->options);
+            const auto r = o->body.empty()
+                               ? render::render(m, o->options)
+                               : qmotion::render_volume(m, o->options, o->body, o->body_tol);
             std::cerr << "qmotion: wrote " << r.path << " (" << r.width << "x" << r.height << ", "
                       << r.trajectories
                       << (r.trajectories == 1 ? " trajectory, " : " trajectories, ")
@@ -56,7 +68,11 @@ Command add_render(CLI::App& app) {
                       << (r.key_markers < r.key_poses
                               ? " (" + std::to_string(r.key_markers) + " marked)"
                               : std::string())
-                      << (r.surface_quads ? ", swept surface" : "") << ")\n";
+                      << (r.surface_quads ? ", swept surface" : "")
+                      << (r.volume_triangles ? ", swept volume of " +
+                                                   std::to_string(r.volume_triangles) + " triangles"
+                                             : std::string())
+                      << ")\n";
             return 0;
           }};
 }

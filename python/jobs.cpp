@@ -218,8 +218,10 @@ void bind_jobs(py::module_& m) {
       ".ply, or .json with the report) that encloses for certain the space body (sphere:r, "
       "box:a,b,c, cylinder:r,h, cutter:flat|ball,D,L, cutter:bull,D,rc,L or a closed "
       ".stl/.obj/.ply mesh) occupies under the motion (either kind), every vertex within tol "
-      "(output units; default 1e-3 of the volume's diagonal). Returns the report dict: "
-      "volume_bounds, distance_bound, measured_distance, triangles, ...");
+      "(output units; default 1e-3 of the volume's diagonal). For sphere:r and cutter:ball "
+      "under a rational motion, .step, .igs and .json hold the exact faces instead (the pipe "
+      "and its caps). Returns the report dict: volume_bounds, distance_bound, "
+      "measured_distance, triangles (exact: faces, degree, volume), ...");
 #ifdef QMOTION_WITH_CGAL
   m.def(
       "check_exact",

@@ -25,6 +25,8 @@
 #include <qmotion/io/atomic_file.hpp>
 #include <qmotion/io/bodies.hpp>
 #include <qmotion/io/mesh.hpp>
+#include <qmotion/io/nurbs_json.hpp>
+#include <qmotion/io/occt.hpp>
 #include <qmotion/io/units.hpp>
 #include <qmotion/kernel/error.hpp>
 #include <qmotion/kernel/interpolation.hpp>
@@ -457,8 +459,70 @@ SweptVolume swept_volume(const Motion& motion, const sweep::Body& body, std::opt
   }
 }
 
+render::RenderResult render_volume(const Motion& motion, render::RenderOptions options,
+                                   const std::string& body_spec, std::optional<double> tol) {
+  const sweep::Body body = io::read_body(body_spec);
+  if (tol && (!(*tol > 0) || !std::isfinite(*tol)))
+    throw Error(Errc::invalid_input, "--body-tol: the tolerance must be a positive length, got " +
+                                         kernel::detail::format_double(*tol));
+  sweep::validate(body);
+  SweptVolume v =
+      swept_volume(motion, body, tol ? *tol : 1e-2 * sampled_box(motion, body).diagonal().norm());
+  options.volume_vertices = std::move(v.vertices);
+  options.volume_triangles = std::move(v.triangles);
+  options.volume_label = "swept volume of " + body.spec + " (encloses it, within " +
+                         kernel::detail::format_double(v.distance_bound) + " " + motion.units() +
+                         ")";
+  return render::render(motion, options);
+}
+
+bool has_exact_swept_volume(const sweep::Body& body) {
+  return body.kind == sweep::Body::Kind::sphere || body.kind == sweep::Body::Kind::ball_cutter;
+}
+
+sweep::PipeShell exact_swept_volume(const Motion& motion, const sweep::Body& body) {
+  sweep::validate(body);
+  if (!has_exact_swept_volume(body))
+    throw Error(Errc::invalid_input,
+                body.spec + ": exact faces exist for sphere:r and cutter:ball (its ball) only");
+  if (!motion.is_rational())
+    throw Error(Errc::invalid_input,
+                motion.label() +
+                    ": a quaternion-spline motion's trajectories are not rational: no exact faces");
+  sweep::refuse_poles(motion.rational());
+  const bool sphere = body.kind == sweep::Body::Kind::sphere;
+  const double r = sphere ? body.r : body.D / 2;
+  const Eigen::Vector3d centre = sphere ? Eigen::Vector3d::Zero() : Eigen::Vector3d(0, 0, r);
+  return sweep::pipe_shell(sweep::point_trajectory(motion.rational(), centre), r, motion.label());
+}
+
 nlohmann::json VolumeReport::report() const {
   const auto& v = volume;
+  if (exact)
+    return {{"output", path},
+            {"body", body},
+            {"units", units},
+            {"exact", true},
+            {"route",
+             "exact faces: the pipe around the sphere centre's rational trajectory and its two "
+             "half-sphere caps (docs/geometry.md, Exact pipe surfaces)"},
+            {"exact_part", exact_part},
+            {"radius", radius},
+            {"faces", faces},
+            {"pipe_faces", pipe_faces},
+            {"pieces", pieces},
+            {"degree", degree},
+            {"distance_bound", 0.0},
+            {"measured_distance", radius_deviation * radius},
+            {"orthogonality", orthogonality},
+            {"volume", exact_volume},
+            {"volume_bounds",
+             has_bounds ? nlohmann::json{v.volume_lower, v.volume_upper} : nlohmann::json(nullptr)},
+            {"tolerance", has_bounds ? nlohmann::json(v.tolerance) : nlohmann::json(nullptr)},
+            {"triangles", 0},
+            {"vertices", 0},
+            {"closed", true},
+            {"seconds", seconds}};
   return {{"output", path},
           {"body", body},
           {"units", units},
@@ -482,17 +546,80 @@ nlohmann::json VolumeReport::report() const {
           {"seconds", seconds}};
 }
 
+namespace {
+
+/// The exact faces written (STEP, IGES or a nurbs_shell), with the certified volume bounds of
+/// the enclosing mesh beside them for the sphere.
+void write_exact(const Motion& motion, const sweep::Body& body, const VolumeOptions& o,
+                 const std::string& ext, double f, VolumeReport& r) {
+  sweep::PipeShell pipe = exact_swept_volume(motion, body);
+  const bool cad = ext != ".json";
+  if (cad && pipe.degree_t > io::occt_max_degree())
+    throw Error(Errc::numerical_failure,
+                o.output + ": the exact pipe has degree " + std::to_string(pipe.degree_t) +
+                    " along t, above the " + std::to_string(io::occt_max_degree()) +
+                    " that OpenCASCADE (and so STEP/IGES export) stores (the centre's path is " +
+                    "rational of high degree, e.g. a tilting ball cutter's); write .json for the "
+                    "exact faces, or .stl for a mesh within --tol");
+  for (auto& face : pipe.shell.faces)
+    for (auto& row : face.points)
+      for (auto& x : row) x *= f;
+  r.exact = true;
+  r.radius = f * (body.kind == sweep::Body::Kind::sphere ? body.r : body.D / 2);
+  r.exact_part = body.kind == sweep::Body::Kind::sphere
+                     ? "the sphere"
+                     : "the ball: centre (0, 0, " + kernel::detail::format_double(body.D / 2) +
+                           ") of the moving frame, radius " +
+                           kernel::detail::format_double(body.D / 2) +
+                           "; the shank is not in these faces (a mesh of the whole cutter: "
+                           ".stl, .obj, .ply)";
+  r.faces = pipe.shell.faces.size();
+  r.pipe_faces = pipe.pipe_faces;
+  r.pieces = pipe.pieces;
+  r.degree = pipe.degree_t;
+  r.orthogonality = pipe.orthogonality;
+  r.radius_deviation = pipe.radius_deviation;
+  r.exact_volume = pipe.volume * f * f * f;
+  r.closed = true;
+  r.has_bounds = body.kind == sweep::Body::Kind::sphere;
+  if (r.has_bounds) {
+    // Default: 1e-2 of the size, and at most a quarter of the radius (the bounds' gap is
+    // about the tolerance times the area).
+    const double T =
+        o.tol ? *o.tol / f : std::min(1e-2 * sweep::diagonal(pipe.shell) / f, 0.25 * body.r);
+    SweptVolume v = swept_volume(motion, body, T);
+    v.vertices.clear();
+    v.triangles.clear();
+    for (double* x : {&v.tolerance, &v.distance_bound, &v.measured_distance, &v.grid_step, &v.level,
+                      &v.piece_delta})
+      *x *= f;
+    v.volume_lower *= f * f * f;
+    v.volume_upper *= f * f * f;
+    r.volume = v;
+  }
+  io::ExportInfo info;
+  info.units = r.units;
+  info.description = motion.label() + " swept by " + body.spec;
+  if (ext == ".json") {
+    nlohmann::json extra{{"units", r.units}, {"body", r.body}, {"volume", r.exact_volume}};
+    io::write_shell_json(o.output, pipe.shell.faces, true, extra);
+  } else if (ext == ".step" || ext == ".stp") {
+    io::write_step(o.output, pipe.shell, info);
+  } else {
+    io::write_iges(o.output, pipe.shell, info);
+  }
+}
+
+}  // namespace
+
 VolumeReport volume(const Motion& motion, const VolumeOptions& o) {
   const auto start = std::chrono::steady_clock::now();
   const std::string ext = io::lower_extension(o.output);
-  if (ext == ".step" || ext == ".stp" || ext == ".igs" || ext == ".iges")
-    throw Error(Errc::invalid_input,
-                o.output +
-                    ": swept volumes are written as meshes (.stl, .obj, .ply) or .json; "
-                    "exact STEP/IGES faces are not built yet for any body");
-  if (!io::is_mesh_path(o.output) && ext != ".json")
-    throw Error(Errc::invalid_input,
-                o.output + ": unknown volume format (expected .stl, .obj, .ply or .json)");
+  const bool cad = ext == ".step" || ext == ".stp" || ext == ".igs" || ext == ".iges";
+  if (!cad && !io::is_mesh_path(o.output) && ext != ".json")
+    throw Error(
+        Errc::invalid_input,
+        o.output + ": unknown volume format (expected .stl, .obj, .ply, .json, .step or .igs)");
   if (o.body.empty())
     throw Error(Errc::invalid_input, "volume: --body is required (sphere:r, box:a,b,c, ...)");
   VolumeReport r;
@@ -504,6 +631,22 @@ VolumeReport volume(const Motion& motion, const VolumeOptions& o) {
                                          kernel::detail::format_double(*o.tol));
   const sweep::Body body = io::read_body(o.body);
   r.body = body.spec;
+  if (cad && !has_exact_swept_volume(body))
+    throw Error(Errc::invalid_input,
+                o.output +
+                    ": exact STEP/IGES faces exist for sphere:r and cutter:ball (its ball's "
+                    "sweep); the swept volume of " +
+                    body.spec + " is written as a mesh (.stl, .obj, .ply) or .json");
+  if (cad && !motion.is_rational())
+    throw Error(Errc::invalid_input,
+                o.output + ": " + motion.label() +
+                    " is a quaternion spline, whose trajectories are not rational: no exact "
+                    "faces; write a mesh (.stl, .obj, .ply) or .json");
+  if (cad || (ext == ".json" && has_exact_swept_volume(body) && motion.is_rational())) {
+    write_exact(motion, body, o, ext, f, r);
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return r;
+  }
   std::optional<double> tol;
   if (o.tol) tol = *o.tol / f;
   SweptVolume v = swept_volume(motion, body, tol);

@@ -227,7 +227,9 @@ TopoDS_Shape make_shell(const sweep::NurbsShell<double>& s, const std::string& p
   const TopoDS_Shape sewn = sewing.SewedShape();
   if (sewn.IsNull())
     throw Error(Errc::export_failed, path + ": OpenCASCADE could not sew the faces");
-  if (s.cap_start.empty()) return sewn;
+  // A solid: planar caps added above, or (closed without them) faces that close by
+  // themselves, such as a pipe with its half-sphere caps.
+  if (s.cap_start.empty() && !s.closed) return sewn;
   TopExp_Explorer e(sewn, TopAbs_SHELL);
   if (!e.More()) throw Error(Errc::export_failed, path + ": the sewn faces form no shell");
   const TopoDS_Shell shell = TopoDS::Shell(e.Current());

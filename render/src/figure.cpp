@@ -78,6 +78,12 @@ void check_figure_options(const RenderOptions& o) {
     throw Error(Errc::invalid_input, "--object-size: expected a positive length");
   for (const Vector3d& x : o.points)
     if (!x.allFinite()) throw Error(Errc::invalid_input, "--point: expected finite coordinates");
+  for (const auto& t : o.volume_triangles)
+    for (int k : t)
+      if (k < 0 || static_cast<std::size_t>(k) >= o.volume_vertices.size())
+        throw Error(Errc::invalid_input, "the swept volume's triangle refers to vertex " +
+                                             std::to_string(k) + " of " +
+                                             std::to_string(o.volume_vertices.size()));
 }
 
 /// The object drawn at the instants and keys: a cube (neither set), a profile's curves, or
@@ -192,13 +198,14 @@ struct View {
 };
 
 const Rgb kBaseObject{0.80, 0.80, 0.80}, kKeyObject{0.98, 0.86, 0.62},
-    kSurfaceColour{0.62, 0.74, 0.90};
+    kSurfaceColour{0.62, 0.74, 0.90}, kVolumeColour{0.90, 0.70, 0.62};
 
 /// The scene as faces to sort by depth and curves on top: the object at every instant and
 /// key, and the swept surface's quads with their iso-lines.
 struct Drawing {
   std::vector<Face> faces;
   std::vector<std::pair<std::vector<Vector3d>, Style>> object_curves;
+  int volume_triangles = 0;
   int quads = 0;
 };
 
@@ -271,6 +278,21 @@ void add_surface(Drawing& d, const Scene& scene, const View& view) {
   }
 }
 
+/// The swept volume's triangles, shaded like the surface but warmer, seams hidden.
+void add_volume(Drawing& d, const RenderOptions& o, const View& view) {
+  for (const auto& t : o.volume_triangles) {
+    Face face;
+    for (int k : t) face.points.push_back(o.volume_vertices[static_cast<std::size_t>(k)]);
+    const Vector3d n = (face.points[1] - face.points[0]).cross(face.points[2] - face.points[0]);
+    face.style.fill = view.shade(kVolumeColour, n);
+    face.style.stroke = *face.style.fill;
+    face.style.width = 0.3;
+    face.style.cls = "swept-volume";
+    d.faces.push_back(std::move(face));
+    ++d.volume_triangles;
+  }
+}
+
 Drawing draw_scene_objects(const Scene& scene, const MovingObject& object, const View& view) {
   Drawing d;
   for (const Rigid& f : scene.frame_maps) add_object(d, object, scene.size, view, f, false);
@@ -303,6 +325,12 @@ Layout layout(const Scene& scene, const Drawing& d, const View& view, const Rend
     s.fill = kSurfaceColour;
     s.stroke = Rgb{0.15, 0.2, 0.3};
     l.legend.emplace_back("swept surface (iso-lines of t and of the profile)", s);
+  }
+  if (!o.volume_triangles.empty()) {
+    Style s;
+    s.fill = kVolumeColour;
+    s.stroke = kVolumeColour;
+    l.legend.emplace_back(o.volume_label.empty() ? "swept volume" : o.volume_label, s);
   }
   {
     Style s;
@@ -494,6 +522,7 @@ Canvas render_figure(const Motion& motion, const RenderOptions& o, RenderResult*
   const MovingObject object = moving_object(motion, o);
   const Scene scene = sample_scene(motion, o);
   Drawing drawing = draw_scene_objects(scene, object, view);
+  add_volume(drawing, o, view);
   const Layout l = layout(scene, drawing, view, o);
 
   canvas.attribute("view", o.view);
@@ -522,6 +551,7 @@ Canvas render_figure(const Motion& motion, const RenderOptions& o, RenderResult*
     result->key_poses = static_cast<int>(scene.key_maps.size());
     result->key_markers = key_markers;
     result->surface_quads = drawing.quads;
+    result->volume_triangles = drawing.volume_triangles;
     result->scale = l.scale;
     result->origin = l.origin;
     result->right = view.right;

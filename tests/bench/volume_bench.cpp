@@ -2,7 +2,8 @@
 // the 60 mm helix, as the number of spans and 1/T grow. T is a fraction of the swept
 // volume's bounding-box diagonal (sampled here as the command samples it): 4e-3, 2e-3 and
 // the default 1e-3. Counters: triangles, certified vertex distance over T, distance
-// queries, time pieces.
+// queries, time pieces. And the exact faces of a sphere (the pipe and its caps) as the
+// spans grow.
 #include <benchmark/benchmark.h>
 
 #include <qmotion/io/bodies.hpp>
@@ -65,6 +66,27 @@ BENCHMARK(BM_VolumeSpans)
     ->Arg(16)
     ->Unit(benchmark::kSecond)
     ->Iterations(1);
+
+/// The exact faces of sphere:3 (the pipe and its caps) on the helix of 8, 16 and 40 poses:
+/// no tolerance, so the work grows with the spans only.
+void BM_VolumeExactPipe(benchmark::State& state) {
+  const qmotion::Motion m = helix(static_cast<int>(state.range(0)));
+  const auto body = qmotion::io::read_body("sphere:3");
+  qmotion::sweep::PipeShell p;
+  for (auto _ : state) {
+    p = qmotion::exact_swept_volume(m, body);
+    benchmark::DoNotOptimize(p.shell.faces.data());
+  }
+  state.counters["faces"] = static_cast<double>(p.shell.faces.size());
+  state.counters["degree"] = p.degree_t;
+  state.counters["pieces"] = static_cast<double>(p.pieces);
+}
+BENCHMARK(BM_VolumeExactPipe)
+    ->ArgName("poses")
+    ->Arg(8)
+    ->Arg(16)
+    ->Arg(40)
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -85,6 +85,7 @@ for case in json.loads(os.environ.get("QMOTION_FC_OPS", "[]")):
         cutter = Part.makeBox(box.XLength, box.YLength / 2, box.ZLength,
                               FreeCAD.Vector(box.XMin, box.YMin, box.ZMin))
         r["cut"] = attempt(lambda: cutter.cut(shape))
+        r["fuse"] = attempt(lambda: cutter.fuse(shape))
     else:
         r["thicken"] = attempt(lambda: shape.makeOffsetShape(0.5, 1e-6, fill=True))
     report["ops"][case["name"]] = r

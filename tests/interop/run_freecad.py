@@ -17,6 +17,9 @@ Usage: run_freecad.py QMOTION DATA WORK_DIR   (DATA: the repository's tests/data
    `qmotion check`) within 1e-6, FreeCAD's fixed-order Volume within 1e-4 once each face's
    U and V are exchanged (the same solid), and as read within 1e-4 (rational) or 1e-2
    (fitted: FreeCAD's rule along U is sized from V; shown on a pipe FreeCAD makes itself).
+3. The exact swept volume of sphere:3 on the 8-pose helix (`volume` to STEP): one valid
+   closed solid that offsets, thickens, cuts and fuses with a box, whose FreeCAD volume
+   matches qmotion's within 1e-4 and lies in the certified bounds.
 Exit 0 pass, 1 fail (a missing freecadcmd fails: QMOTION_FREECADCMD names another), 77
 skip (QMOTION_REAL_CLIENTS=OFF in the environment).
 """
@@ -108,6 +111,10 @@ def main():
             if fx > 1e-4:  # every solid, fitted or rational, once FreeCAD's rule sees the spans
                 failures.append("FreeCAD volume, U and V exchanged, %r vs %r"
                                 % (r["volume_uv_exchanged"], case["volume"]))
+        if r and "volume_bounds" in case:
+            lo, hi = case["volume_bounds"]
+            if not lo <= r["volume"] <= hi:
+                failures.append("FreeCAD volume %r outside the certified bounds %r" % (r["volume"], [lo, hi]))
         if failures:
             print("FAIL:", case["name"], "; ".join(failures))
             ok = False
@@ -188,6 +195,20 @@ def operation_cases(qmotion, data, work):
             if not (rel <= 1e-6 and occt["closed"] and occt["solids"] == 1 and occt["valid"]):
                 raise SystemExit("FAIL: %s: OpenCASCADE's solid %r" % (name, occt))
         out.append(case)
+    # The exact swept volume of a sphere on the 8-pose helix (`volume` to STEP): the pipe and
+    # its half-sphere caps, one solid; its volume within the certified bounds.
+    doc = json.load(open(os.path.join(data, "poses", "helix_40.json")))
+    doc["poses"] = doc["poses"][:8]
+    poses8 = os.path.join(work, "helix_8.json")
+    json.dump(doc, open(poses8, "w"))
+    motion8 = os.path.join(work, "motion_helix8.json")
+    run("interpolate", poses8, "-o", motion8)
+    step = os.path.join(work, "sphere_pipe_solid.step")
+    report = json.loads(run("volume", motion8, "--body", "sphere:3", "-o", step, "--tol", "0.4").stdout)
+    print("sphere_pipe_solid: qmotion volume %.12g, certified bounds %r, degree %d, %d faces"
+          % (report["volume"], report["volume_bounds"], report["degree"], report["faces"]))
+    out.append({"name": "sphere_pipe_solid", "file": step, "expect": ["closed", "thicken", "cut", "fuse"],
+                "solid": True, "volume": report["volume"], "volume_bounds": report["volume_bounds"]})
     return out
 
 

@@ -314,24 +314,43 @@ def test_volume_is_the_clis(tmp_path):
     # Binary STL: 84 bytes of header and count, 50 a triangle; the same bytes both ways.
     a = open(tmp_path / "a.stl", "rb").read()
     assert len(a) == 84 + 50 * ours["triangles"] and a == open(tmp_path / "b.stl", "rb").read()
-    # In inches: the same mesh scaled, the volume by 25.4^3.
-    inch = qmotion.volume(m, str(tmp_path / "c.json"), "cutter:ball,6,20", tol=2.0 / 25.4, units="in")
-    assert inch["triangles"] == ours["triangles"]
-    assert abs(inch["volume_bounds"][1] * 25.4 ** 3 - upper) < 1e-9 * upper
+    # In inches: the same mesh scaled, the volume by 25.4^3 (the flat cutter: a ball cutter's
+    # JSON holds its ball's exact faces, below).
+    flat = qmotion.volume(m, str(tmp_path / "c.stl"), "cutter:flat,6,20", tol=2.0)
+    inch = qmotion.volume(m, str(tmp_path / "c.json"), "cutter:flat,6,20", tol=2.0 / 25.4, units="in")
+    assert inch["triangles"] == flat["triangles"]
+    top = flat["volume_bounds"][1]
+    assert abs(inch["volume_bounds"][1] * 25.4 ** 3 - top) < 1e-9 * top
     doc = json.load(open(tmp_path / "c.json"))
-    assert doc["units"] == "in" and len(doc["triangles"]) == ours["triangles"]
-    with pytest.raises(ValueError, match="exact STEP/IGES faces are not built yet"):
-        qmotion.volume(m, str(tmp_path / "d.step"), "sphere:1")
+    assert doc["units"] == "in" and len(doc["triangles"]) == flat["triangles"]
+    ball = qmotion.volume(m, str(tmp_path / "ball.json"), "cutter:ball,6,20")
+    assert ball["exact"] and "shank" in ball["exact_part"]
+    assert json.load(open(tmp_path / "ball.json"))["type"] == "nurbs_shell"
+    with pytest.raises(ValueError, match="exact STEP/IGES faces exist for sphere:r and cutter:ball"):
+        qmotion.volume(m, str(tmp_path / "d.step"), "box:1,2,3")
     assert not (tmp_path / "d.step").exists()
+    # A sphere's exact faces: STEP from both, the same report; the JSON shell holds them.
+    ours_exact = qmotion.volume(m, str(tmp_path / "e.step"), "sphere:2", tol=2.0)
+    r = cli("volume", motion, "--body", "sphere:2", "--tol", "2", "-o", tmp_path / "f.step")
+    assert r.returncode == 0, r.stderr
+    theirs = json.loads(r.stdout)
+    assert {k: v for k, v in ours_exact.items() if k not in skip} == {k: v for k, v in theirs.items() if k not in skip}
+    assert ours_exact["exact"] and ours_exact["faces"] == ours_exact["pipe_faces"] + 8
+    assert ours_exact["degree"] <= 25
+    lower, upper = ours_exact["volume_bounds"]
+    assert lower <= ours_exact["volume"] <= upper
+    shell = qmotion.volume(m, str(tmp_path / "g.json"), "sphere:2", tol=2.0)
+    doc = json.load(open(tmp_path / "g.json"))
+    assert doc["type"] == "nurbs_shell" and doc["closed"] and len(doc["faces"]) == shell["faces"]
     # `check --body` by its own sampling: the STL and the JSON (in inches) enclose the cutter's
     # volume, vertices within the tolerance; a bigger cutter's volume is not enclosed (exit 3).
-    for f in ("a.stl", "c.json"):
-        r = cli("check", tmp_path / f, "--motion", motion, "--body", "cutter:ball,6,20")
+    for f, body, made in (("a.stl", "cutter:ball,6,20", ours), ("c.json", "cutter:flat,6,20", flat)):
+        r = cli("check", tmp_path / f, "--motion", motion, "--body", body)
         assert r.returncode == 0, r.stderr
         c = json.loads(r.stdout)
         assert c["encloses"] and c["outside"] == 0 and c["samples"] == 20000
-        assert 0.3 * 2.0 < c["vertex_distance"] <= ours["distance_bound"] * (1 + 1e-6)
-        assert c["triangles"] == ours["triangles"]
+        assert 0.3 * 2.0 < c["vertex_distance"] <= made["distance_bound"] * (1 + 1e-6)
+        assert c["triangles"] == made["triangles"]
     r = cli("check", tmp_path / "a.stl", "--motion", motion, "--body", "cutter:ball,10,20")
     assert r.returncode == 3 and "lie outside the mesh" in r.stderr
     assert json.loads(r.stdout)["outside"] > 0

@@ -10,9 +10,12 @@
 #include <io_test_util.hpp>
 #include <qmotion/api/interpolate.hpp>
 #include <qmotion/api/qspline.hpp>
+#include <qmotion/api/volume.hpp>
 #include <qmotion/kernel/dual_quaternion.hpp>
 #include <qmotion/render/render.hpp>
 #include <qmotion/sweep/profiles.hpp>
+#include <random>
+#include <sstream>
 #include <string>
 
 namespace qmotion {
@@ -173,6 +176,62 @@ TEST(Render, SvgDrawsWhatTheResultCounts) {
     EXPECT_GT(px.y(), 30);  // below the title
     EXPECT_LT(px.y(), o.height);
   }
+}
+
+TEST(Render, SweptVolumeCoversTheShadowOfEverySampledPointOfIt) {
+  // render --body: the enclosing mesh drawn; every point of the swept sphere set, placed by
+  // the motion at a random t, projects into one of the drawn triangles (the mesh encloses V,
+  // so its shadow covers V's).
+  const qmotion::Motion m(interpolated("poses/five_positions.json"));
+  render::RenderOptions o;
+  o.output = scratch("volume.svg").string();
+  o.frames = 3;
+  const render::RenderResult r = qmotion::render_volume(m, o, "sphere:6", 4.0);
+  EXPECT_GT(r.volume_triangles, 500);
+  std::ifstream in(o.output);
+  const std::string svg((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(count(svg, "class=\"swept-volume\""), static_cast<std::size_t>(r.volume_triangles));
+  EXPECT_NE(svg.find("swept volume of sphere:6"), std::string::npos);
+  std::vector<std::array<Eigen::Vector2d, 3>> tris;
+  for (auto p = svg.find("<polygon points=\""); p != std::string::npos;
+       p = svg.find("<polygon points=\"", p + 1)) {
+    const auto end = svg.find("/>", p);
+    if (svg.substr(p, end - p).find("class=\"swept-volume\"") == std::string::npos) continue;
+    const std::size_t from = p + std::string("<polygon points=\"").size();
+    std::string pts = svg.substr(from, svg.find('"', from) - from);
+    for (char& c : pts)
+      if (c == ',') c = ' ';
+    std::istringstream is(pts);
+    std::array<Eigen::Vector2d, 3> t;
+    for (auto& v : t) is >> v.x() >> v.y();
+    tris.push_back(t);
+  }
+  ASSERT_EQ(tris.size(), static_cast<std::size_t>(r.volume_triangles));
+  std::mt19937 g(3);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::normal_distribution<double> n(0, 1);
+  for (int i = 0; i < 300; ++i) {
+    const double t = m.a() + (m.b() - m.a()) * u(g);
+    const Vector3d x = m.place(t, Vector3d(6 * Vector3d(n(g), n(g), n(g)).normalized()));
+    const Eigen::Vector2d q = r.origin + r.scale * Eigen::Vector2d(x.dot(r.right), -x.dot(r.up));
+    bool inside = false;
+    for (const auto& tr : tris) {
+      const Eigen::Vector2d a = tr[1] - tr[0], b = tr[2] - tr[0], c = q - tr[0];
+      const double det = a.x() * b.y() - a.y() * b.x();
+      if (std::abs(det) < 1e-12) continue;
+      const double l1 = (c.x() * b.y() - c.y() * b.x()) / det,
+                   l2 = (a.x() * c.y() - a.y() * c.x()) / det;
+      if (l1 >= -1e-3 && l2 >= -1e-3 && l1 + l2 <= 1 + 1e-3) {
+        inside = true;
+        break;
+      }
+    }
+    ASSERT_TRUE(inside) << "a point of the swept volume at t = " << t << " projects outside";
+  }
+  // A bad body is refused before anything is written.
+  o.output = scratch("bad_volume.svg").string();
+  EXPECT_THROW(qmotion::render_volume(m, o, "sphere:-1"), Error);
+  EXPECT_FALSE(fs::exists(o.output));
 }
 
 TEST(Render, ObjectsFromAMeshOrAProfileArePlacedAtEveryInstant) {

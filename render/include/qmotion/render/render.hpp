@@ -4,6 +4,7 @@
 // scale bar; and plots of a quantity along t. SVG or PNG (cairo).
 #pragma once
 #include <Eigen/Core>
+#include <array>
 #include <optional>
 #include <qmotion/motion.hpp>
 #include <qmotion/render/canvas.hpp>
@@ -32,6 +33,11 @@ struct RenderOptions {
   /// The stored profile of `object` (set by render when it reads one; callers may set it
   /// directly with object = "profile").
   std::optional<sweep::Profile<double>> object_profile;
+  /// A swept volume to draw as shaded triangles among the other faces (qmotion::render_volume
+  /// fills it from `render --body`): vertices in the motion's space, outward triangles.
+  std::vector<Eigen::Vector3d> volume_vertices;
+  std::vector<std::array<int, 3>> volume_triangles;
+  std::string volume_label;  ///< its legend entry, e.g. "swept volume of cutter:ball,6,20"
 };
 
 /// What was drawn, and the projection (screen = origin + scale (x.right, -x.up)).
@@ -46,7 +52,8 @@ struct RenderResult {
   /// keys' objects are drawn up to 12 keys.
   int key_markers = 0;
   int surface_quads = 0;
-  double scale = 0;                                  ///< pixels per unit of length
+  int volume_triangles = 0;  ///< triangles of the swept volume drawn (class "swept-volume")
+  double scale = 0;          ///< pixels per unit of length
   Eigen::Vector2d origin = Eigen::Vector2d::Zero();  ///< pixel position of the world origin
   Eigen::Vector3d right = Eigen::Vector3d::UnitX(), up = Eigen::Vector3d::UnitZ(),
                   toward_viewer = Eigen::Vector3d::UnitY();

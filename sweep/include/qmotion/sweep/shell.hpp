@@ -8,9 +8,10 @@
 namespace qmotion::sweep {
 
 /// Several NURBS faces that belong together: the sweeps of a profile's edges, each split at
-/// its C0 knots (docs/formats.md). `closed` marks a solid's lateral faces, whose caps
+/// its C0 knots (docs/formats.md). `closed` marks a solid's faces: lateral faces whose caps
 /// `cap_start`/`cap_end` are the planar regions bounded by the profile's images at both
-/// ends of the interval (the curves in profile order, empty without caps).
+/// ends of the interval (the curves in profile order), or, with no cap curves, faces that
+/// close by themselves (a pipe and its half-sphere caps, sweep/pipe.hpp).
 template <typename Scalar>
 struct NurbsShell {
   std::vector<NurbsSurface<Scalar>> faces;
