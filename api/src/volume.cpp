@@ -548,6 +548,16 @@ nlohmann::json VolumeReport::report() const {
 
 namespace {
 
+/// The volume's figures (without its mesh) scaled by f, lengths and volumes.
+SweptVolume in_unit(SweptVolume v, double f) {
+  for (double* x : {&v.tolerance, &v.distance_bound, &v.measured_distance, &v.grid_step, &v.level,
+                    &v.piece_delta})
+    *x *= f;
+  v.volume_lower *= f * f * f;
+  v.volume_upper *= f * f * f;
+  return v;
+}
+
 /// The exact faces written (STEP, IGES or a nurbs_shell), with the certified volume bounds of
 /// the enclosing mesh beside them for the sphere.
 void write_exact(const Motion& motion, const sweep::Body& body, const VolumeOptions& o,
@@ -590,12 +600,7 @@ void write_exact(const Motion& motion, const sweep::Body& body, const VolumeOpti
     SweptVolume v = swept_volume(motion, body, T);
     v.vertices.clear();
     v.triangles.clear();
-    for (double* x : {&v.tolerance, &v.distance_bound, &v.measured_distance, &v.grid_step, &v.level,
-                      &v.piece_delta})
-      *x *= f;
-    v.volume_lower *= f * f * f;
-    v.volume_upper *= f * f * f;
-    r.volume = v;
+    r.volume = in_unit(std::move(v), f);
   }
   io::ExportInfo info;
   info.units = r.units;
@@ -655,12 +660,7 @@ VolumeReport volume(const Motion& motion, const VolumeOptions& o) {
   for (const auto& x : v.vertices) mesh.vertices.push_back(f * x);
   mesh.triangles = std::move(v.triangles);
   v.vertices.clear();
-  for (double* x : {&v.tolerance, &v.distance_bound, &v.measured_distance, &v.grid_step, &v.level,
-                    &v.piece_delta})
-    *x *= f;
-  v.volume_lower *= f * f * f;
-  v.volume_upper *= f * f * f;
-  r.volume = v;
+  r.volume = in_unit(std::move(v), f);
   r.triangles = mesh.triangles.size();
   r.vertices = mesh.vertices.size();
   r.closed = true;  // by construction (the tests check it with CGAL)
