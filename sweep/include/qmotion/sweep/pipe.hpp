@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <complex>
 #include <cstdio>
@@ -137,12 +138,13 @@ inline CPoly sqrt_sum_of_squares(const Poly& V, const std::string& where) {
   if (n == 0) return {Cx(std::sqrt(V[0]))};
   if (n % 2 != 0) throw Error(Errc::internal, where + ": |c'|^2 of odd degree");
   const int N = n + 1;
-  std::vector<double> c(static_cast<std::size_t>(N));
+  std::vector<double> c(static_cast<std::size_t>(N)), values;
+  for (int k = 0; k < N; ++k)
+    values.push_back(evaluate(V, 0.5 * (1 + std::cos(M_PI * (k + 0.5) / N))));
   for (int j = 0; j < N; ++j) {
     double sum = 0;
     for (int k = 0; k < N; ++k)
-      sum += evaluate(V, 0.5 * (1 + std::cos(M_PI * (k + 0.5) / N))) *
-             std::cos(j * M_PI * (k + 0.5) / N);
+      sum += values[static_cast<std::size_t>(k)] * std::cos(j * M_PI * (k + 0.5) / N);
     c[static_cast<std::size_t>(j)] = (j == 0 ? 1.0 : 2.0) * sum / N;
   }
   const double cn = c[static_cast<std::size_t>(n)];
@@ -503,15 +505,14 @@ inline void emit(const Patch& c, double t0, double t1, double s0,
   out.push_back(std::move(f));
 }
 
-/// A half-sphere cap over arc [a, b] of the piece's circle at u (0: start, 1: end): the
-/// circle's row (as the pipe face has it) swept by a rational quarter circle to the pole
+/// A half-sphere cap over one arc of the piece's circle at u (0: start, 1: end): the circle's
+/// row (`ring`, as the pipe face has it) swept by a rational quarter circle to the pole
 /// c -/+ r t (t the unit tangent), u along the meridian, v along the arc.
-inline NurbsSurface<double> cap(const Piece& p, double a, double b, double u, double r, double s0) {
-  const Patch row = pipe_patch(p, a, b, r);  // its boundary row at u is the circle
+inline NurbsSurface<double> cap(const Piece& p, const std::vector<Eigen::Vector4d>& ring, double u,
+                                double r, double s0) {
   const Eigen::Vector4d H = evaluate(p.H, u);
   const Eigen::Vector3d c = H.tail<3>() / H(0);
   const Eigen::Vector3d t = eval3(p.v, u).normalized() * (u == 0 ? -1.0 : 1.0);
-  const auto& ring = u == 0 ? row.front() : row.back();
   const double q = std::sqrt(0.5);
   const double om[3] = {1, q, 1}, al[3] = {1, q, 0}, be[3] = {0, q, 1};
   NurbsSurface<double> f;
@@ -619,6 +620,7 @@ inline PipeShell pipe_shell(const kernel::BSpline<Eigen::Vector4d>& centre, doub
   Cx phase(0);  // unit h / |h| at the previous piece's end
   Eigen::Vector3d last_tangent = Eigen::Vector3d::Zero();
   Piece first, last;
+  std::array<std::vector<Eigen::Vector4d>, A> start_rings, end_rings;
   bool started = false;
   while (!stack.empty()) {
     auto [p, depth] = std::move(stack.back());
@@ -691,9 +693,13 @@ inline PipeShell pipe_shell(const kernel::BSpline<Eigen::Vector4d>& centre, doub
     phase = h1 / std::abs(h1);
     G = end_frame(p);
     last_tangent = t1.normalized();
-    for (int j = 0; j < A; ++j)
-      emit(pipe_patch(p, phi[static_cast<std::size_t>(j)], phi[static_cast<std::size_t>(j + 1)], r),
-           p.t0, p.t1, j, out.shell.faces, where);
+    for (int j = 0; j < A; ++j) {
+      const auto jj = static_cast<std::size_t>(j);
+      const Patch patch = pipe_patch(p, phi[jj], phi[jj + 1], r);
+      if (!started) start_rings[jj] = patch.front();  // the circles the caps are built on
+      end_rings[jj] = patch.back();
+      emit(patch, p.t0, p.t1, j, out.shell.faces, where);
+    }
     // Orthogonality and unit length, sampled (rounding only: they hold identically).
     for (int i = 0; i <= 4; ++i)
       for (int j = 0; j < 8; ++j) {
@@ -710,11 +716,10 @@ inline PipeShell pipe_shell(const kernel::BSpline<Eigen::Vector4d>& centre, doub
   }
   for (const auto& f : out.shell.faces) out.degree_t = std::max(out.degree_t, f.degree_u);
   out.pipe_faces = out.shell.faces.size();
-  for (const Piece* p : {&first, &last})
-    for (int j = 0; j < A; ++j)
-      out.shell.faces.push_back(cap(*p, phi[static_cast<std::size_t>(j)],
-                                    phi[static_cast<std::size_t>(j + 1)], p == &first ? 0 : 1, r,
-                                    j));
+  for (int j = 0; j < A; ++j)
+    out.shell.faces.push_back(cap(first, start_rings[static_cast<std::size_t>(j)], 0, r, j));
+  for (int j = 0; j < A; ++j)
+    out.shell.faces.push_back(cap(last, end_rings[static_cast<std::size_t>(j)], 1, r, j));
   out.shell.closed = true;
   // Every face turned outward (X_u x X_v away from the centre of its sphere), its radius
   // deviation sampled, and the enclosed volume (1/3) sum of the integrals of (X - o) . dA.
