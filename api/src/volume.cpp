@@ -32,12 +32,12 @@
 #include <qmotion/kernel/interpolation.hpp>
 #include <qmotion/sweep/swept_volume.hpp>
 #include <qmotion/sweep/trajectory.hpp>
-#include <unordered_map>
 
 namespace qmotion {
 namespace {
 
 constexpr int kBlock = 8;  // lattice vertices per block edge
+static_assert(kBlock >= 2 && (kBlock & (kBlock - 1)) == 0, "fill halves blocks down to 2^3");
 constexpr double kSqrt3 = 1.7320508075688772;
 constexpr double kPi = 3.14159265358979323846;
 
@@ -49,8 +49,10 @@ class Lattice {
     Kind kind = Kind::near;
     Eigen::Vector3d centre = Eigen::Vector3d::Zero();
     double lower = 0, depth = 0;  // at the centre
+    int node = -1;                // the tree's best placement for the centre
     std::vector<double> value;    // near: F at the 512 vertices
     std::vector<float> depth_at;  // near: certified depth inside V (0 outside)
+    std::vector<int> node_at;     // near: the tree's best placement found for the vertex
   };
 
   Lattice(const sweep::SweptVolumeTree& tree, const Eigen::AlignedBox3d& box, double h, double tau)
@@ -87,6 +89,7 @@ class Lattice {
       ++queries;
       B.lower = std::max(d.lower, box_distance(B.centre));
       B.depth = d.signed_upper < 0 ? -d.signed_upper : 0;
+      B.node = d.node;
       if (B.depth >= r_cells)
         B.kind = Kind::deep;
       else if (B.lower - r >= tau_ + 2 * kSqrt3 * h_ + 2 * eps_)
@@ -105,6 +108,7 @@ class Lattice {
       if (B.kind != Kind::near) return;
       B.value.resize(kBlock * kBlock * kBlock);
       B.depth_at.resize(kBlock * kBlock * kBlock);
+      B.node_at.resize(kBlock * kBlock * kBlock);
       const auto [bi, bj, bk] = block_index(b);
       std::size_t asked = 0;
       fill(B, bi * kBlock, bj * kBlock, bk * kBlock, kBlock, asked);
@@ -114,19 +118,29 @@ class Lattice {
 
   /// The values of the s^3 vertices from (i, j, k) on: one query at their centre settles
   /// them all when they are all far out (as blocks are) or all inside V; else the eight
-  /// octants, down to single vertices.
+  /// octants, down to cubes of 2^3 vertices, whose queries share one search of the tree for
+  /// the leaves that can matter to them (SweptVolumeTree::candidates).
   void fill(Block& B, long i, long j, long k, int s, std::size_t& asked) const {
-    if (s == 1) {
-      const Eigen::Vector3d x = position(i, j, k);
-      const auto d = tree_.query(x, -1.01 * kSqrt3 * h_);
-      ++asked;
-      B.value[local(i, j, k)] = std::max(d.lower, box_distance(x));
-      B.depth_at[local(i, j, k)] =
-          d.signed_upper < 0 ? static_cast<float>(-d.signed_upper * (1 - 1e-6)) : 0.0f;
-      return;
-    }
     const double r = 0.5 * (s - 1) * kSqrt3 * h_;
     const Eigen::Vector3d c = position(i, j, k) + Eigen::Vector3d::Constant(0.5 * (s - 1) * h_);
+    if (s == 2) {
+      thread_local std::vector<std::pair<int, double>> leaves;
+      double rest = 0;
+      tree_.candidates(c, r * (1 + 1e-12), leaves, rest);
+      ++asked;
+      for (int o = 0; o < 8; ++o) {
+        const long a = i + (o & 1), b = j + (o >> 1 & 1), e = k + (o >> 2 & 1);
+        const Eigen::Vector3d x = position(a, b, e);
+        const auto d = tree_.query_among(x, leaves, rest, 0.05 * tau_, 1.01 * kSqrt3 * h_);
+        const int l = local(a, b, e);
+        B.value[l] = std::max(d.lower, box_distance(x));
+        B.depth_at[l] =
+            d.signed_upper < 0 ? static_cast<float>(-d.signed_upper * (1 - 1e-6)) : 0.0f;
+        B.node_at[l] = d.node;
+      }
+      asked += 8;
+      return;
+    }
     const auto d = tree_.query(c, -r);
     ++asked;
     const double lower = std::max(d.lower, box_distance(c));
@@ -137,9 +151,11 @@ class Lattice {
         for (long b = j; b < j + s; ++b)
           for (long e = k; e < k + s; ++e) {
             const double to = (position(a, b, e) - c).norm();
-            B.value[local(a, b, e)] = deep ? 0.0 : lower - to;
-            B.depth_at[local(a, b, e)] =
+            const int l = local(a, b, e);
+            B.value[l] = deep ? 0.0 : lower - to;
+            B.depth_at[l] =
                 deep ? static_cast<float>(std::max(0.0, (depth - to) * (1 - 1e-6))) : 0.0f;
+            B.node_at[l] = d.node;
           }
       return;
     }
@@ -177,6 +193,12 @@ class Lattice {
       default:
         return B.depth_at[local(i, j, k)];
     }
+  }
+
+  /// The tree's node whose placement was nearest a vertex, of those its query saw.
+  int node(long i, long j, long k) const {
+    const Block& B = block(i, j, k);
+    return B.kind == Kind::near ? B.node_at[local(i, j, k)] : B.node;
   }
 
   Eigen::Vector3d position(long i, long j, long k) const {
@@ -223,12 +245,57 @@ class Lattice {
 /// cube [0, d / sqrt(3)]^3 the ball holds, the whole cube from d >= h sqrt(3).
 double inside_part(double d, double h) {
   if (!(d > 0)) return 0;
-  const double octant = kPi / 6 * std::pow(std::min(d, h), 3);
-  return std::max(octant, std::pow(std::min(d / kSqrt3, h), 3));
+  const double a = std::min(d, h), b = std::min(d / kSqrt3, h);
+  return std::max(kPi / 6 * a * a * a, b * b * b);
 }
+
+/// The surface's vertices by lattice edge: open addressing with linear probing (the standard
+/// map's nodes cost more than the search here).
+class EdgeIndex {
+ public:
+  /// The slot of key: {index, true} when it was absent (its value is then to be set).
+  std::pair<int*, bool> try_emplace(std::uint64_t key) {
+    if (2 * (used_ + 1) > keys_.size()) grow();
+    std::size_t i = slot(key);
+    while (keys_[i] != kEmpty) {
+      if (keys_[i] == key) return {&values_[i], false};
+      i = (i + 1) & (keys_.size() - 1);
+    }
+    keys_[i] = key;
+    ++used_;
+    return {&values_[i], true};
+  }
+
+ private:
+  static constexpr std::uint64_t kEmpty = ~std::uint64_t(0);
+  std::size_t slot(std::uint64_t key) const {
+    return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> shift_);
+  }
+  void grow() {
+    std::vector<std::uint64_t> keys = std::move(keys_);
+    std::vector<int> values = std::move(values_);
+    const std::size_t n = keys.empty() ? std::size_t(1) << 16 : 2 * keys.size();
+    keys_.assign(n, kEmpty);
+    values_.assign(n, 0);
+    shift_ = 64;
+    for (std::size_t m = n; m > 1; m >>= 1) --shift_;
+    for (std::size_t i = 0; i < keys.size(); ++i)
+      if (keys[i] != kEmpty) {
+        std::size_t j = slot(keys[i]);
+        while (keys_[j] != kEmpty) j = (j + 1) & (n - 1);
+        keys_[j] = keys[i];
+        values_[j] = values[i];
+      }
+  }
+  std::vector<std::uint64_t> keys_;
+  std::vector<int> values_;
+  std::size_t used_ = 0;
+  int shift_ = 64;
+};
 
 struct Surface {
   std::vector<Eigen::Vector3d> vertices;
+  std::vector<std::array<int, 2>> near;  ///< the tree's best nodes for the edge's two ends
   std::vector<std::array<int, 3>> triangles;
   double inside_volume = 0;  ///< of the lattice cubes certified inside V
 };
@@ -240,13 +307,14 @@ Surface extract(const Lattice& L) {
   const long* n = L.n();
   const long* nb = L.blocks_per_axis();
   const double tau = L.tau(), h = L.h();
-  std::unordered_map<std::uint64_t, int> on_edge;
+  EdgeIndex on_edge;
   auto gid = [&](long i, long j, long k) {
     return static_cast<std::uint64_t>((i * n[1] + j) * n[2] + k);
   };
   static const int kuhn[6][4] = {{0, 1, 3, 7}, {0, 1, 5, 7}, {0, 2, 3, 7},
                                  {0, 2, 6, 7}, {0, 4, 5, 7}, {0, 4, 6, 7}};
   const double cell = h * h * h;
+  std::vector<double> value((kBlock + 1) * (kBlock + 1) * (kBlock + 1)), depth(value.size());
   for (long bi = 0; bi < nb[0]; ++bi)
     for (long bj = 0; bj < nb[1]; ++bj)
       for (long bk = 0; bk < nb[2]; ++bk) {
@@ -258,17 +326,30 @@ Surface extract(const Lattice& L) {
           if (own == Lattice::Kind::deep) s.inside_volume += cell * kBlock * kBlock * kBlock;
           continue;
         }
-        for (long i = bi * kBlock; i < std::min((bi + 1) * kBlock, n[0] - 1); ++i)
-          for (long j = bj * kBlock; j < std::min((bj + 1) * kBlock, n[1] - 1); ++j)
-            for (long k = bk * kBlock; k < std::min((bk + 1) * kBlock, n[2] - 1); ++k) {
+        // The block's vertices and the next ones on its far sides, looked up once.
+        constexpr int m = kBlock + 1;
+        const long i0 = bi * kBlock, j0 = bj * kBlock, k0 = bk * kBlock;
+        const long i1 = std::min(i0 + kBlock, n[0] - 1), j1 = std::min(j0 + kBlock, n[1] - 1),
+                   k1 = std::min(k0 + kBlock, n[2] - 1);
+        for (long i = i0; i <= i1; ++i)
+          for (long j = j0; j <= j1; ++j)
+            for (long k = k0; k <= k1; ++k) {
+              const int l = static_cast<int>(((i - i0) * m + (j - j0)) * m + (k - k0));
+              value[l] = L.value(i, j, k);
+              depth[l] = L.depth(i, j, k);
+            }
+        for (long i = i0; i < i1; ++i)
+          for (long j = j0; j < j1; ++j)
+            for (long k = k0; k < k1; ++k) {
               double v[8];
               int inside = 0;
               double deepest = 0;
+              const int l0 = static_cast<int>(((i - i0) * m + (j - j0)) * m + (k - k0));
               for (int c = 0; c < 8; ++c) {
-                const long x = i + (c & 1), y = j + (c >> 1 & 1), z = k + (c >> 2 & 1);
-                v[c] = L.value(x, y, z);
+                const int l = l0 + ((c & 1) * m + (c >> 1 & 1)) * m + (c >> 2 & 1);
+                v[c] = value[l];
                 inside += v[c] < tau;
-                deepest = std::max(deepest, L.depth(x, y, z));
+                deepest = std::max(deepest, depth[l]);
               }
               s.inside_volume += inside_part(deepest, h);
               if (inside == 0 || inside == 8) continue;
@@ -281,13 +362,15 @@ Surface extract(const Lattice& L) {
                 const std::uint64_t key =
                     gid(i + (lo & 1), j + (lo >> 1 & 1), k + (lo >> 2 & 1)) * 8 +
                     static_cast<std::uint64_t>(lo ^ hi);
-                const auto [it, fresh] = on_edge.try_emplace(key, 0);
+                const auto [it, fresh] = on_edge.try_emplace(key);
                 if (fresh) {
                   const double s0 = (tau - v[lo]) / (v[hi] - v[lo]);
-                  it->second = static_cast<int>(s.vertices.size());
+                  *it = static_cast<int>(s.vertices.size());
                   s.vertices.push_back(corner(lo) + s0 * (corner(hi) - corner(lo)));
+                  s.near.push_back({L.node(i + (lo & 1), j + (lo >> 1 & 1), k + (lo >> 2 & 1)),
+                                    L.node(i + (hi & 1), j + (hi >> 1 & 1), k + (hi >> 2 & 1))});
                 }
-                return it->second;
+                return *it;
               };
               // Appends (a, b, c), or (a, c, b), whichever faces from `in` towards `out`.
               auto triangle = [&](int a, int b, int c, const Eigen::Vector3d& toward) {
@@ -421,10 +504,31 @@ SweptVolume swept_volume(const Motion& motion, const sweep::Body& body, std::opt
                       kernel::detail::format_double(T) + " would have more than 10^7 triangles (" +
                       std::to_string(s.triangles.size()) + "): raise --tol");
     // Each vertex's distance to V, bounded from above by the best placement the tree finds.
+    // The placements nearest the edge's ends come first: one within 0.85 T settles the
+    // vertex; else the tree is searched.
     std::vector<sweep::VolumeDistance> at(s.vertices.size());
-    tbb::parallel_for(std::size_t(0), s.vertices.size(),
-                      [&](std::size_t v) { at[v] = tree.query(s.vertices[v], -HUGE_VAL); });
-    queries += s.vertices.size();
+    std::atomic<std::size_t> searched{0};
+    tbb::parallel_for(std::size_t(0), s.vertices.size(), [&](std::size_t v) {
+      sweep::VolumeDistance& d = at[v];
+      for (const int i : s.near[v])
+        if (i >= 0) {
+          const double sd = tree.node_distance(s.vertices[v], i);
+          if (sd < d.signed_upper) {
+            d.signed_upper = sd;
+            d.node = i;
+          }
+        }
+      if (d.signed_upper <= 0.85 * T) {
+        const auto& n = tree.nodes()[static_cast<std::size_t>(d.node)];
+        d.t = n.tm;
+        d.t0 = n.t0;
+        d.t1 = n.t1;
+      } else {
+        d = tree.query(s.vertices[v], -HUGE_VAL);
+        ++searched;
+      }
+    });
+    queries += searched;
     double bound = 0;
     for (const auto& d : at) bound = std::max(bound, std::max(d.signed_upper, 0.0));
     // Rounding of the placement and the distance: relative 1e-12 of the scene.

@@ -26,6 +26,7 @@ struct VolumeDistance {
   double signed_upper = HUGE_VAL;
   double t = 0;           ///< where signed_upper was found
   double t0 = 0, t1 = 0;  ///< the finest interval of t searched there
+  int node = -1;          ///< the tree's node whose placement gave signed_upper
 };
 
 /// A binary tree over the motion's parameter: every node is an interval [t0, t1] of one
@@ -120,6 +121,7 @@ class SweptVolumeTree {
         out.t = n.tm;
         out.t0 = n.t0;
         out.t1 = n.t1;
+        out.node = i;
       }
       if (best < stop_below) {
         out.lower = 0;
@@ -136,6 +138,104 @@ class SweptVolumeTree {
       stack.emplace_back(first0 ? n.child[0] : n.child[1], lb);
     }
     out.lower = std::max(0.0, std::min(out.lower, std::max(best, 0.0)));
+    return out;
+  }
+
+  /// The signed distance from q to the body as node i places it, M(tm) K: an upper bound of
+  /// the distance from q to V.
+  double node_distance(const Eigen::Vector3d& q, int i) const {
+    const Node& n = nodes_[static_cast<std::size_t>(i)];
+    return signed_distance(body_, n.Rt * (q - n.p));
+  }
+
+  /// The leaves that can hold the nearest placement for some point within r of c, for a
+  /// batch of queries about c. A node whose bound at c, lb, is at least best + 2 r (best: the
+  /// smallest signed distance from c to a placement seen) is left out: for x within r of c
+  /// its bound is at least lb - r >= best + r, and best + r bounds x's distance from above.
+  /// `rest` receives the smallest lb - r of the nodes left out: a lower bound, for every such
+  /// x, of its distance to the part of V they sweep. The leaves come with their bound at c
+  /// less r (a lower bound for every such x), smallest first.
+  void candidates(const Eigen::Vector3d& c, double r, std::vector<std::pair<int, double>>& leaves,
+                  double& rest) const {
+    leaves.clear();
+    thread_local std::vector<std::pair<int, double>> stack;  // node, its bound at c
+    thread_local std::vector<std::pair<int, double>> found;  // leaf, its bound at c
+    stack.clear();
+    found.clear();
+    double best = HUGE_VAL, left_out = HUGE_VAL;
+    for (auto it = roots_.rbegin(); it != roots_.rend(); ++it) stack.emplace_back(*it, -HUGE_VAL);
+    while (!stack.empty()) {
+      const auto [i, parent_lb] = stack.back();
+      stack.pop_back();
+      if (parent_lb >= best + 2 * r) {
+        left_out = std::min(left_out, parent_lb);
+        continue;
+      }
+      const Node& n = nodes_[static_cast<std::size_t>(i)];
+      const double ball = (c - n.centre).norm() - ball_radius_ - n.delta;
+      if (ball >= best + 2 * r) {
+        left_out = std::min(left_out, ball);
+        continue;
+      }
+      const double sd = signed_distance(body_, n.Rt * (c - n.p));
+      best = std::min(best, sd);
+      const double lb = std::max(ball, sd - n.delta);
+      if (lb >= best + 2 * r) {
+        left_out = std::min(left_out, lb);
+        continue;
+      }
+      if (n.child[0] < 0) {
+        found.emplace_back(i, lb);
+        continue;
+      }
+      const Node &c0 = nodes_[static_cast<std::size_t>(n.child[0])],
+                 &c1 = nodes_[static_cast<std::size_t>(n.child[1])];
+      const bool first0 = (c - c0.centre).squaredNorm() < (c - c1.centre).squaredNorm();
+      stack.emplace_back(first0 ? n.child[1] : n.child[0], lb);
+      stack.emplace_back(first0 ? n.child[0] : n.child[1], lb);
+    }
+    // Leaves found before best fell far enough are left out now.
+    for (const auto& [i, lb] : found)
+      if (lb < best + 2 * r)
+        leaves.emplace_back(i, lb - r);
+      else
+        left_out = std::min(left_out, lb);
+    std::sort(leaves.begin(), leaves.end(),
+              [](const auto& a, const auto& b) { return a.second < b.second; });
+    rest = left_out - r;
+  }
+
+  /// What query(x) learns from the candidates of a batch about c (candidates(c, r, ...)), for
+  /// x within r of c. The leaves are taken in turn until the next one's bound for every such
+  /// x is no lower than what is known less `slack` (then lower is at most slack below what the
+  /// whole list would give), or until a placement holds x deeper than stop_depth.
+  VolumeDistance query_among(const Eigen::Vector3d& x,
+                             const std::vector<std::pair<int, double>>& leaves, double rest,
+                             double slack, double stop_depth) const {
+    VolumeDistance out;
+    double lower = rest, best = HUGE_VAL;
+    for (const auto& [i, bound] : leaves) {
+      if (bound >= std::min(lower, std::max(best, 0.0)) - slack) {
+        lower = std::min(lower, bound);  // the leaves not taken: bound, and above
+        break;
+      }
+      const Node& n = nodes_[static_cast<std::size_t>(i)];
+      const double sd = signed_distance(body_, n.Rt * (x - n.p));
+      lower = std::min(lower, sd - n.delta);
+      if (sd < best) {
+        best = sd;
+        out.node = i;
+        if (best <= -stop_depth) break;
+      }
+    }
+    out.signed_upper = best;
+    if (out.node >= 0) {
+      const Node& n = nodes_[static_cast<std::size_t>(out.node)];
+      out.t = n.tm;
+      out.t0 = n.t0;
+      out.t1 = n.t1;
+    }
+    out.lower = std::max(0.0, std::min(lower, std::max(best, 0.0)));
     return out;
   }
 
