@@ -546,20 +546,26 @@ inline void face_derivs(const NurbsSurface<double>& f, double u, double v, Eigen
   const double u0 = f.knots_u.front(), u1 = f.knots_u.back(), v0 = f.knots_v.front(),
                v1 = f.knots_v.back();
   const double a = (u - u0) / (u1 - u0), b = (v - v0) / (v1 - v0);
+  // Bernstein values of degree n and n - 1 from tables of powers and binomials (std::pow
+  // here took most of the shell's time).
   auto basis = [](int n, double x, std::vector<double>& B, std::vector<double>& dB) {
-    B.assign(static_cast<std::size_t>(n + 1), 0.0);
-    dB.assign(static_cast<std::size_t>(n + 1), 0.0);
-    for (int i = 0; i <= n; ++i)
-      B[static_cast<std::size_t>(i)] =
-          kernel::binomial<double>(n, i) * std::pow(x, i) * std::pow(1 - x, n - i);
-    for (int i = 0; i <= n; ++i) {
-      const double lo = i > 0 ? kernel::binomial<double>(n - 1, i - 1) * std::pow(x, i - 1) *
-                                    std::pow(1 - x, n - i)
-                              : 0.0;
-      const double hi =
-          i < n ? kernel::binomial<double>(n - 1, i) * std::pow(x, i) * std::pow(1 - x, n - 1 - i)
-                : 0.0;
-      dB[static_cast<std::size_t>(i)] = n * (lo - hi);
+    const auto m = static_cast<std::size_t>(n);
+    std::vector<double> xp(m + 1, 1.0), yp(m + 1, 1.0), C(m + 1, 1.0), Cm(m + 1, 1.0);
+    for (std::size_t k = 1; k <= m; ++k) {
+      xp[k] = xp[k - 1] * x;
+      yp[k] = yp[k - 1] * (1 - x);
+    }
+    for (std::size_t k = 1; k <= m; ++k) {  // C(n, k) and C(n - 1, k)
+      C[k] = C[k - 1] * static_cast<double>(m + 1 - k) / static_cast<double>(k);
+      Cm[k] = k < m ? Cm[k - 1] * static_cast<double>(m - k) / static_cast<double>(k) : 0.0;
+    }
+    B.assign(m + 1, 0.0);
+    dB.assign(m + 1, 0.0);
+    for (std::size_t i = 0; i <= m; ++i) B[i] = C[i] * xp[i] * yp[m - i];
+    for (std::size_t i = 0; i <= m; ++i) {
+      const double lo = i > 0 ? Cm[i - 1] * xp[i - 1] * yp[m - i] : 0.0;
+      const double hi = i < m ? Cm[i] * xp[i] * yp[m - 1 - i] : 0.0;
+      dB[i] = n * (lo - hi);
     }
   };
   std::vector<double> Bu, dBu, Bv, dBv;
