@@ -519,10 +519,7 @@ SweptVolume swept_volume(const Motion& motion, const sweep::Body& body, std::opt
           }
         }
       if (d.signed_upper <= 0.85 * T) {
-        const auto& n = tree.nodes()[static_cast<std::size_t>(d.node)];
-        d.t = n.tm;
-        d.t0 = n.t0;
-        d.t1 = n.t1;
+        tree.found_at(d, d.node);
       } else {
         d = tree.query(s.vertices[v], -HUGE_VAL);
         ++searched;

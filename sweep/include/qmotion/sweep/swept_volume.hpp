@@ -118,10 +118,7 @@ class SweptVolumeTree {
       if (sd < best) {
         best = sd;
         out.signed_upper = sd;
-        out.t = n.tm;
-        out.t0 = n.t0;
-        out.t1 = n.t1;
-        out.node = i;
+        found_at(out, i);
       }
       if (best < stop_below) {
         out.lower = 0;
@@ -139,6 +136,15 @@ class SweptVolumeTree {
     }
     out.lower = std::max(0.0, std::min(out.lower, std::max(best, 0.0)));
     return out;
+  }
+
+  /// Records node i as where d's upper bound was found: its parameters and interval.
+  void found_at(VolumeDistance& d, int i) const {
+    const Node& n = nodes_[static_cast<std::size_t>(i)];
+    d.node = i;
+    d.t = n.tm;
+    d.t0 = n.t0;
+    d.t1 = n.t1;
   }
 
   /// The signed distance from q to the body as node i places it, M(tm) K: an upper bound of
@@ -229,12 +235,7 @@ class SweptVolumeTree {
       }
     }
     out.signed_upper = best;
-    if (out.node >= 0) {
-      const Node& n = nodes_[static_cast<std::size_t>(out.node)];
-      out.t = n.tm;
-      out.t0 = n.t0;
-      out.t1 = n.t1;
-    }
+    if (out.node >= 0) found_at(out, out.node);
     out.lower = std::max(0.0, std::min(lower, std::max(best, 0.0)));
     return out;
   }
