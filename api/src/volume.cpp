@@ -37,7 +37,9 @@ namespace qmotion {
 namespace {
 
 constexpr int kBlock = 8;  // lattice vertices per block edge
-static_assert(kBlock >= 2 && (kBlock & (kBlock - 1)) == 0, "fill halves blocks down to 2^3");
+static_assert(kBlock == 8, "fill takes octants of 4^3 vertices, and their cubes of 2^3");
+/// How far below the exact minimum over a batch's leaves a vertex's bound may stop, in tau.
+constexpr double kSlack = 0.05;
 constexpr double kSqrt3 = 1.7320508075688772;
 constexpr double kPi = 3.14159265358979323846;
 
@@ -56,7 +58,13 @@ class Lattice {
   };
 
   Lattice(const sweep::SweptVolumeTree& tree, const Eigen::AlignedBox3d& box, double h, double tau)
-      : tree_(tree), box_(box), h_(h), tau_(tau), eps_(1e-7 * h) {
+      : tree_(tree),
+        box_(box),
+        h_(h),
+        tau_(tau),
+        eps_(1e-7 * h),
+        far_(tau + kSqrt3 * h + tree.largest_leaf_delta() + kSlack * tau + 2 * eps_),
+        stop_depth_(1.01 * kSqrt3 * h) {
     const double pad = tau + 3 * h;
     origin_ = box.min() - Eigen::Vector3d::Constant(pad);
     for (int a = 0; a < 3; ++a) {
@@ -74,29 +82,21 @@ class Lattice {
     blocks_.resize(static_cast<std::size_t>(blocks));
   }
 
-  /// Classifies every block by one query at its centre, then evaluates the near ones. A far
-  /// block's vertices are more than h sqrt(3) beyond tau, so none is a neighbour of an inside
-  /// vertex: the surface's vertices interpolate evaluated values only.
+  /// Classifies every block, then evaluates the near ones. A block is deep when a query
+  /// finds its cells inside V, far when its vertices' bounds reach far_ (so none is a
+  /// neighbour of an inside vertex: the surface's vertices interpolate evaluated values
+  /// only), and near otherwise. Regions of 8^3 blocks are settled by one query at
+  /// their centre when they are all deep or all far, else their octants, down to one block.
   void evaluate(std::atomic<std::size_t>& queries) {
-    const double r = 0.5 * (kBlock - 1) * kSqrt3 * h_;        // centre to an owned vertex
-    const double r_cells = 0.5 * (kBlock + 1) * kSqrt3 * h_;  // centre to a cell's corner
-    tbb::parallel_for(std::size_t(0), blocks_.size(), [&](std::size_t b) {
-      Block& B = blocks_[b];
-      const auto [bi, bj, bk] = block_index(b);
-      B.centre = position(bi * kBlock, bj * kBlock, bk * kBlock) +
-                 Eigen::Vector3d::Constant(0.5 * (kBlock - 1) * h_);
-      const auto d = tree_.query(B.centre, -r_cells);
-      ++queries;
-      B.lower = std::max(d.lower, box_distance(B.centre));
-      B.depth = d.signed_upper < 0 ? -d.signed_upper : 0;
-      B.node = d.node;
-      if (B.depth >= r_cells)
-        B.kind = Kind::deep;
-      else if (B.lower - r >= tau_ + 2 * kSqrt3 * h_ + 2 * eps_)
-        B.kind = Kind::far;
-      else
-        B.kind = Kind::near;
-    });
+    constexpr long kRegion = 8;  // blocks per region edge
+    const long nr[3] = {(nb_[0] + kRegion - 1) / kRegion, (nb_[1] + kRegion - 1) / kRegion,
+                        (nb_[2] + kRegion - 1) / kRegion};
+    tbb::parallel_for(std::size_t(0), static_cast<std::size_t>(nr[0] * nr[1] * nr[2]),
+                      [&](std::size_t g) {
+                        const long l = static_cast<long>(g);
+                        classify(l / (nr[1] * nr[2]) * kRegion, (l / nr[2]) % nr[1] * kRegion,
+                                 l % nr[2] * kRegion, kRegion, queries);
+                      });
     std::size_t near = 0;
     for (const auto& B : blocks_) near += B.kind == Kind::near;
     if (near > 100000)
@@ -111,57 +111,113 @@ class Lattice {
       B.node_at.resize(kBlock * kBlock * kBlock);
       const auto [bi, bj, bk] = block_index(b);
       std::size_t asked = 0;
-      fill(B, bi * kBlock, bj * kBlock, bk * kBlock, kBlock, asked);
+      // The block's own query (above) found it neither deep nor far: its octants next.
+      constexpr int half = kBlock / 2;
+      for (int o = 0; o < 8; ++o)
+        fill(B, bi * kBlock + (o & 1) * half, bj * kBlock + (o >> 1 & 1) * half,
+             bk * kBlock + (o >> 2 & 1) * half, asked);
       queries += asked;
     });
   }
 
-  /// The values of the s^3 vertices from (i, j, k) on: one query at their centre settles
-  /// them all when they are all far out (as blocks are) or all inside V; else the eight
-  /// octants, down to cubes of 2^3 vertices, whose queries share one search of the tree for
-  /// the leaves that can matter to them (SweptVolumeTree::candidates).
-  void fill(Block& B, long i, long j, long k, int s, std::size_t& asked) const {
-    const double r = 0.5 * (s - 1) * kSqrt3 * h_;
-    const Eigen::Vector3d c = position(i, j, k) + Eigen::Vector3d::Constant(0.5 * (s - 1) * h_);
-    if (s == 2) {
-      thread_local std::vector<std::pair<int, double>> leaves;
-      double rest = 0;
-      tree_.candidates(c, r * (1 + 1e-12), leaves, rest);
-      ++asked;
-      for (int o = 0; o < 8; ++o) {
-        const long a = i + (o & 1), b = j + (o >> 1 & 1), e = k + (o >> 2 & 1);
-        const Eigen::Vector3d x = position(a, b, e);
-        const auto d = tree_.query_among(x, leaves, rest, 0.05 * tau_, 1.01 * kSqrt3 * h_);
-        const int l = local(a, b, e);
-        B.value[l] = std::max(d.lower, box_distance(x));
-        B.depth_at[l] =
-            d.signed_upper < 0 ? static_cast<float>(-d.signed_upper * (1 - 1e-6)) : 0.0f;
-        B.node_at[l] = d.node;
-      }
-      asked += 8;
+  /// Classifies the blocks (bi, bj, bk) + [0, size)^3 by a query at the centre of their
+  /// vertices (see evaluate()): each block's bounds are the centre's, less its distance.
+  void classify(long bi, long bj, long bk, long size, std::atomic<std::size_t>& queries) {
+    if (bi >= nb_[0] || bj >= nb_[1] || bk >= nb_[2]) return;
+    const double r = 0.5 * (kBlock - 1) * kSqrt3 * h_;        // block centre to its vertex
+    const double r_cells = 0.5 * (kBlock + 1) * kSqrt3 * h_;  // block centre to a cell's corner
+    const double spread = 0.5 * static_cast<double>((size - 1) * kBlock) * kSqrt3 * h_;
+    const Eigen::Vector3d c =
+        position(bi * kBlock, bj * kBlock, bk * kBlock) +
+        Eigen::Vector3d::Constant(0.5 * static_cast<double>(size * kBlock - 1) * h_);
+    const auto d = tree_.query(c, -(spread + r_cells));
+    ++queries;
+    const double lower = std::max(d.lower, box_distance(c));
+    const double depth = d.signed_upper < 0 ? -d.signed_upper : 0;
+    if (size == 1 || depth >= spread + r_cells || lower - spread - r >= far_) {
+      for (long a = bi; a < std::min(bi + size, nb_[0]); ++a)
+        for (long b = bj; b < std::min(bj + size, nb_[1]); ++b)
+          for (long e = bk; e < std::min(bk + size, nb_[2]); ++e) {
+            Block& B = blocks_[static_cast<std::size_t>((a * nb_[1] + b) * nb_[2] + e)];
+            B.centre = position(a * kBlock, b * kBlock, e * kBlock) +
+                       Eigen::Vector3d::Constant(0.5 * (kBlock - 1) * h_);
+            const double to = (B.centre - c).norm();
+            B.lower = lower - to;
+            B.depth = std::max(0.0, depth - to);
+            B.node = d.node;
+            if (B.depth >= r_cells)
+              B.kind = Kind::deep;
+            else if (B.lower - r >= far_)
+              B.kind = Kind::far;
+            else
+              B.kind = Kind::near;
+          }
       return;
     }
+    const long half = size / 2;
+    for (int o = 0; o < 8; ++o)
+      classify(bi + (o & 1) * half, bj + (o >> 1 & 1) * half, bk + (o >> 2 & 1) * half, half,
+               queries);
+  }
+
+  /// The values of the 4^3 vertices from (i, j, k) on. One query at their centre settles
+  /// them all when they are all far out (as blocks are) or all deep inside V. Else one search
+  /// of the tree at the centre finds the leaves that can matter to any of them
+  /// (SweptVolumeTree::candidates); each cube of 2^3 narrows that list to its own ball
+  /// (SweptVolumeTree::narrow), which settles it when it is far or deep, and its vertices
+  /// take their bounds from what is left (SweptVolumeTree::query_among).
+  void fill(Block& B, long i, long j, long k, std::size_t& asked) const {
+    constexpr int s = kBlock / 2;
+    const double r = 0.5 * (s - 1) * kSqrt3 * h_;
+    const Eigen::Vector3d c = position(i, j, k) + Eigen::Vector3d::Constant(0.5 * (s - 1) * h_);
     const auto d = tree_.query(c, -r);
     ++asked;
     const double lower = std::max(d.lower, box_distance(c));
     const double depth = d.signed_upper < 0 ? -d.signed_upper : 0;
-    const bool deep = depth >= r, far = lower - r >= tau_ + 2 * kSqrt3 * h_ + 2 * eps_;
-    if (deep || far) {
+    if (depth >= r || lower - r >= far_) {
       for (long a = i; a < i + s; ++a)
         for (long b = j; b < j + s; ++b)
           for (long e = k; e < k + s; ++e) {
             const double to = (position(a, b, e) - c).norm();
-            const int l = local(a, b, e);
-            B.value[l] = deep ? 0.0 : lower - to;
-            B.depth_at[l] =
-                deep ? static_cast<float>(std::max(0.0, (depth - to) * (1 - 1e-6))) : 0.0f;
-            B.node_at[l] = d.node;
+            set(B, a, b, e, depth >= r ? 0.0 : lower - to, depth - to, d.node);
           }
       return;
     }
-    const int h = s / 2;
-    for (int o = 0; o < 8; ++o)
-      fill(B, i + (o & 1) * h, j + (o >> 1 & 1) * h, k + (o >> 2 & 1) * h, h, asked);
+    thread_local sweep::SweptVolumeTree::Candidates wide, near;
+    tree_.candidates(c, r * (1 + 1e-12), wide);
+    ++asked;
+    // A cube of 2^3 is deep when its vertices lie deeper than a cube's diagonal (so that the
+    // inner volume's bound loses nothing).
+    const double r2 = 0.5 * kSqrt3 * h_, deep = r2 + stop_depth_;
+    for (int o = 0; o < 8; ++o) {
+      const long i2 = i + (o & 1) * 2, j2 = j + (o >> 1 & 1) * 2, k2 = k + (o >> 2 & 1) * 2;
+      const Eigen::Vector3d c2 = position(i2, j2, k2) + Eigen::Vector3d::Constant(0.5 * h_);
+      tree_.narrow(wide, c2, r2, near);
+      ++asked;
+      const bool settled = near.best <= -deep || near.lower >= far_;
+      for (long a = i2; a < i2 + 2; ++a)
+        for (long b = j2; b < j2 + 2; ++b)
+          for (long e = k2; e < k2 + 2; ++e) {
+            const Eigen::Vector3d x = position(a, b, e);
+            if (settled) {
+              set(B, a, b, e, near.best < 0 ? 0.0 : near.lower, -near.best - (x - c2).norm(),
+                  near.best_node);
+              continue;
+            }
+            const auto v = tree_.query_among(x, near, kSlack * tau_, stop_depth_);
+            ++asked;
+            set(B, a, b, e, std::max(v.lower, box_distance(x)), -v.signed_upper, v.node);
+          }
+    }
+  }
+
+  /// Records a near block's vertex: its lower bound, a depth inside V (kept when positive,
+  /// less a relative 1e-6 for the float), and the tree's best placement for it.
+  void set(Block& B, long a, long b, long e, double value, double depth, int node) const {
+    const int l = local(a, b, e);
+    B.value[l] = value;
+    B.depth_at[l] = depth > 0 ? static_cast<float>(depth * (1 - 1e-6)) : 0.0f;
+    B.node_at[l] = node;
   }
 
   /// F at a vertex, moved below tau - eps when within eps of tau (lowering keeps it a lower
@@ -235,6 +291,11 @@ class Lattice {
   const sweep::SweptVolumeTree& tree_;
   Eigen::AlignedBox3d box_;
   double h_, tau_, eps_;
+  /// A vertex whose lower bound is at least far_ is "far": its true distance exceeds tau by
+  /// more than a Kuhn edge (h sqrt(3)) plus how far below it a near vertex's bound may lie
+  /// (a leaf's radius, and kSlack tau), so no near vertex next to it falls below tau.
+  double far_;
+  double stop_depth_;  ///< a vertex deeper in V than a cube's diagonal needs no more search
   Eigen::Vector3d origin_;
   long n_[3] = {0, 0, 0}, nb_[3] = {0, 0, 0};
   std::vector<Block> blocks_;
@@ -253,6 +314,14 @@ double inside_part(double d, double h) {
 /// map's nodes cost more than the search here).
 class EdgeIndex {
  public:
+  /// The value of key, or nullptr when it is absent.
+  const int* find(std::uint64_t key) const {
+    if (keys_.empty()) return nullptr;
+    for (std::size_t i = slot(key); keys_[i] != kEmpty; i = (i + 1) & (keys_.size() - 1))
+      if (keys_[i] == key) return &values_[i];
+    return nullptr;
+  }
+
   /// The slot of key: {index, true} when it was absent (its value is then to be set).
   std::pair<int*, bool> try_emplace(std::uint64_t key) {
     if (2 * (used_ + 1) > keys_.size()) grow();
@@ -296,13 +365,15 @@ class EdgeIndex {
 struct Surface {
   std::vector<Eigen::Vector3d> vertices;
   std::vector<std::array<int, 2>> near;  ///< the tree's best nodes for the edge's two ends
+  std::vector<std::uint64_t> edge;       ///< the lattice edge a vertex lies on (EdgeIndex key)
   std::vector<std::array<int, 3>> triangles;
   double inside_volume = 0;  ///< of the lattice cubes certified inside V
 };
 
-/// Marching tetrahedra over the lattice's cubes that the level crosses (six Kuhn tetrahedra
-/// per cube, around its diagonal from corner 0 to corner 7).
-Surface extract(const Lattice& L) {
+/// Marching tetrahedra over the cubes of the blocks bi in [row0, row1) that the level
+/// crosses (six Kuhn tetrahedra per cube, around its diagonal from corner 0 to corner 7).
+/// An edge's key is 8 times its lower end's lattice index plus the axes it spans (bits).
+Surface extract_rows(const Lattice& L, long row0, long row1) {
   Surface s;
   const long* n = L.n();
   const long* nb = L.blocks_per_axis();
@@ -315,7 +386,7 @@ Surface extract(const Lattice& L) {
                                  {0, 2, 6, 7}, {0, 4, 5, 7}, {0, 4, 6, 7}};
   const double cell = h * h * h;
   std::vector<double> value((kBlock + 1) * (kBlock + 1) * (kBlock + 1)), depth(value.size());
-  for (long bi = 0; bi < nb[0]; ++bi)
+  for (long bi = row0; bi < row1; ++bi)
     for (long bj = 0; bj < nb[1]; ++bj)
       for (long bk = 0; bk < nb[2]; ++bk) {
         const auto own = L.kind(bi, bj, bk);
@@ -369,6 +440,7 @@ Surface extract(const Lattice& L) {
                   s.vertices.push_back(corner(lo) + s0 * (corner(hi) - corner(lo)));
                   s.near.push_back({L.node(i + (lo & 1), j + (lo >> 1 & 1), k + (lo >> 2 & 1)),
                                     L.node(i + (hi & 1), j + (hi >> 1 & 1), k + (hi >> 2 & 1))});
+                  s.edge.push_back(key);
                 }
                 return *it;
               };
@@ -410,6 +482,62 @@ Surface extract(const Lattice& L) {
             }
       }
   return s;
+}
+
+/// The surface over the whole lattice: rows of blocks in parallel, then joined in order.
+/// A vertex on an edge in the plane between two parts' rows is made by both: the later part's
+/// copy becomes the earlier one's.
+Surface extract(const Lattice& L) {
+  const long rows = L.blocks_per_axis()[0];
+  const long* n = L.n();
+  std::vector<Surface> parts(static_cast<std::size_t>(rows));
+  tbb::parallel_for(long(0), rows, [&](long r) {
+    parts[static_cast<std::size_t>(r)] = extract_rows(L, r, r + 1);
+  });
+  // Where each part's vertices go: the next free index, or the earlier part's copy.
+  std::vector<std::vector<int>> to(parts.size());
+  std::vector<std::size_t> triangles_before(parts.size() + 1, 0);
+  int count = 0;
+  EdgeIndex shared;  // the previous part's vertices on its last plane, by edge
+  for (long r = 0; r < rows; ++r) {
+    const Surface& p = parts[static_cast<std::size_t>(r)];
+    std::vector<int>& t = to[static_cast<std::size_t>(r)];
+    t.resize(p.vertices.size());
+    EdgeIndex last;
+    for (std::size_t v = 0; v < p.vertices.size(); ++v) {
+      const std::uint64_t key = p.edge[v];
+      const long i = static_cast<long>(key / 8 / static_cast<std::uint64_t>(n[1] * n[2]));
+      const bool in_plane = (key & 1) == 0;  // the edge does not span the first axis
+      const int* earlier = r > 0 && in_plane && i == r * kBlock ? shared.find(key) : nullptr;
+      t[v] = earlier ? -1 - *earlier : count++;
+      if (in_plane && i == (r + 1) * kBlock) *last.try_emplace(key).first = t[v];
+    }
+    triangles_before[static_cast<std::size_t>(r) + 1] =
+        triangles_before[static_cast<std::size_t>(r)] + p.triangles.size();
+    shared = std::move(last);
+  }
+  Surface out;
+  out.vertices.resize(static_cast<std::size_t>(count));
+  out.near.resize(static_cast<std::size_t>(count));
+  out.triangles.resize(triangles_before.back());
+  tbb::parallel_for(std::size_t(0), parts.size(), [&](std::size_t r) {
+    const Surface& p = parts[r];
+    const std::vector<int>& t = to[r];
+    auto index = [&](int v) {
+      return t[static_cast<std::size_t>(v)] < 0 ? -1 - t[static_cast<std::size_t>(v)]
+                                                : t[static_cast<std::size_t>(v)];
+    };
+    for (std::size_t v = 0; v < p.vertices.size(); ++v)
+      if (t[v] >= 0) {
+        out.vertices[static_cast<std::size_t>(t[v])] = p.vertices[v];
+        out.near[static_cast<std::size_t>(t[v])] = p.near[v];
+      }
+    std::size_t at = triangles_before[r];
+    for (const auto& tr : p.triangles)
+      out.triangles[at++] = {index(tr[0]), index(tr[1]), index(tr[2])};
+  });
+  for (const auto& p : parts) out.inside_volume += p.inside_volume;
+  return out;
 }
 
 /// The volume inside a closed, outward-oriented mesh (the divergence theorem about `o`).

@@ -1,7 +1,8 @@
 // tests/sweep/swept_volume_test.cpp mirrors sweep/swept_volume.hpp: the tree's bounds of the
 // distance f(x) from a point to the swept volume, by a full branch and bound (query) and by a
-// batch of points sharing one search (candidates, query_among), against f measured by a
-// search on t of the test's own (dense samples, then golden sections).
+// batch of points sharing one search (candidates, narrow, query_among), against f measured by
+// a search on t of the test's own (dense samples, then golden sections); and the subgradient
+// of a convex body's signed distance (sweep/body.hpp) that the batches' plane bounds use.
 #include <gtest/gtest.h>
 
 #include <cctype>
@@ -58,75 +59,150 @@ double measured_distance(const Motion& m, const qmotion::sweep::Body& body, cons
 }
 
 struct Case {
-  const char* body;
+  const char* body;  ///< a body spec, or @ and a file under tests/data
   bool rational;
 };
 
+qmotion::sweep::Body body_of(const char* spec) {
+  return qmotion::io::read_body(spec[0] == '@' ? qmotion::test::test_data(spec + 1) : spec);
+}
+
 class TreeBounds : public ::testing::TestWithParam<Case> {};
 
-// Points about the volume's boundary: a placed point of the body pushed out by up to 2 T, and
-// a batch of cubes of edge h about them. For every point x of a cube:
-// - both lower bounds are below f(x), the batch's also when it stops early, and within the leaves'
-// radius (plus the batch's slack)
-//   of it;
-// - both upper bounds are actual placements, no lower than f(x); the full search's is within
+// Points about the volume's boundary: a placed point of the body pushed out by up to 2 T, a
+// batch of 4^3 lattice points of step h about it (one search, candidates), and its eight cubes
+// of 2^3 (narrow). For every point x of a cube:
+// - every lower bound is below f(x): the full search's, the wide batch's, the narrowed one's,
+//   and the narrowed one's with a wide slack (it stops after few leaves); and all are within
+//   the leaves' radius (plus the batch's slack) of it;
+// - every upper bound is an actual placement, no lower than f(x); the full search's is within
 //   the leaves' radius above it (the leaf holding the best t is opened, or a bound already
 //   proved f reached).
+// For every cube: narrow's lower bound is below f at its vertices, its best is the signed
+// distance from the cube's centre to the placement it names.
 TEST_P(TreeBounds, BracketTheMeasuredDistance) {
   const Case c = GetParam();
   const Motion m = helix(c.rational);
-  const auto body = qmotion::io::read_body(c.body);
+  const auto body = body_of(c.body);
   const double rho = qmotion::sweep::radius(body), T = 0.05 * rho, leaf = 0.1 * T;
   const qmotion::sweep::SweptVolumeTree tree(m, body, leaf);
-  const double h = 0.8 * T, r = 0.5 * std::sqrt(3.0) * h, slack = 0.05 * T;
+  const double h = 0.8 * T, r = 1.5 * std::sqrt(3.0) * h, r2 = 0.5 * std::sqrt(3.0) * h;
+  const double slack = 0.05 * T;
   const auto mesh = qmotion::sweep::triangulate(body, 1e-3 * rho);
   std::mt19937 g(31);
   std::uniform_real_distribution<double> u(0, 1);
-  std::vector<std::pair<int, double>> leaves;
+  qmotion::sweep::SweptVolumeTree::Candidates wide, near;
+  // eps: rounding; slop: the measured f's excess over the true minimum, besides.
+  const double eps = 1e-9 * rho, slop = 1e-6 * rho;
   int outside = 0;
-  for (int trial = 0; trial < 40; ++trial) {
+  for (int trial = 0; trial < 12; ++trial) {
     const double t = m.a() + (m.b() - m.a()) * u(g);
     const V3 v =
         mesh.vertices[static_cast<std::size_t>(u(g) * mesh.vertices.size()) % mesh.vertices.size()];
     const V3 out = (v - V3(0, 0, 0.5 * rho)).normalized();
     const V3 centre = m.place(t, v + 2 * T * u(g) * out);
-    double rest = 0;
-    tree.candidates(centre, r, leaves, rest);
-    for (int o = 0; o < 8; ++o) {
-      const V3 x = centre + 0.5 * h * V3(o & 1 ? 1 : -1, o & 2 ? 1 : -1, o & 4 ? 1 : -1);
-      const double f = measured_distance(m, body, x);
-      const auto full = tree.query(x, -HUGE_VAL);
-      const auto batch = tree.query_among(x, leaves, rest, slack, HUGE_VAL);
-      // eps: rounding; slop: the measured f's excess over the true minimum, besides.
-      const double eps = 1e-9 * rho, slop = 1e-6 * rho;
-      SCOPED_TRACE(std::string(c.body) + " trial " + std::to_string(trial) + " corner " +
-                   std::to_string(o) + " f " + std::to_string(f));
-      EXPECT_LE(full.lower, f + eps);
-      EXPECT_LE(batch.lower, f + eps);
-      // With a wide slack the batch stops after few leaves: still a lower bound.
-      EXPECT_LE(tree.query_among(x, leaves, rest, 2 * T, HUGE_VAL).lower, f + eps);
-      EXPECT_GE(full.lower, f - leaf - slop);
-      EXPECT_GE(batch.lower, f - leaf - slack - slop);
-      EXPECT_GE(std::max(full.signed_upper, 0.0), f - eps);
-      EXPECT_GE(std::max(batch.signed_upper, 0.0), f - eps);
-      EXPECT_LE(full.signed_upper, f + leaf + eps);
-      ASSERT_GE(batch.node, 0);
-      EXPECT_NEAR(tree.node_distance(x, batch.node), batch.signed_upper, eps);
-      outside += f > 0;
+    tree.candidates(centre, r, wide);
+    for (int cube = 0; cube < 8; ++cube) {
+      const V3 c2 = centre + h * V3(cube & 1 ? 1 : -1, cube & 2 ? 1 : -1, cube & 4 ? 1 : -1);
+      tree.narrow(wide, c2, r2, near);
+      ASSERT_GE(near.best_node, 0);
+      EXPECT_NEAR(tree.node_distance(c2, near.best_node), near.best, eps);
+      EXPECT_GE(std::max(near.best, 0.0), measured_distance(m, body, c2) - eps);
+      for (int o = 0; o < 8; ++o) {
+        const V3 x = c2 + 0.5 * h * V3(o & 1 ? 1 : -1, o & 2 ? 1 : -1, o & 4 ? 1 : -1);
+        const double f = measured_distance(m, body, x);
+        const auto full = tree.query(x, -HUGE_VAL);
+        const auto batch = tree.query_among(x, wide, slack, HUGE_VAL);
+        const auto narrowed = tree.query_among(x, near, slack, HUGE_VAL);
+        SCOPED_TRACE(std::string(c.body) + " trial " + std::to_string(trial) + " cube " +
+                     std::to_string(cube) + " corner " + std::to_string(o) + " f " +
+                     std::to_string(f));
+        EXPECT_LE(full.lower, f + eps);
+        EXPECT_LE(batch.lower, f + eps);
+        EXPECT_LE(narrowed.lower, f + eps);
+        EXPECT_LE(near.lower, f + eps);
+        EXPECT_LE(tree.query_among(x, near, 2 * T, HUGE_VAL).lower, f + eps);
+        EXPECT_GE(full.lower, f - leaf - slop);
+        EXPECT_GE(batch.lower, f - leaf - slack - slop);
+        EXPECT_GE(narrowed.lower, f - leaf - slack - slop);
+        EXPECT_GE(std::max(full.signed_upper, 0.0), f - eps);
+        EXPECT_GE(std::max(narrowed.signed_upper, 0.0), f - eps);
+        EXPECT_LE(full.signed_upper, f + leaf + eps);
+        ASSERT_GE(narrowed.node, 0);
+        EXPECT_NEAR(tree.node_distance(x, narrowed.node), narrowed.signed_upper, eps);
+        outside += f > 0;
+      }
     }
   }
-  EXPECT_GT(outside, 100);  // most points are outside V, where the bounds are measured
+  EXPECT_GT(outside, 300);  // most points are outside V, where the bounds are measured
 }
 
 INSTANTIATE_TEST_SUITE_P(Bodies, TreeBounds,
                          ::testing::Values(Case{"cutter:ball,6,20", true}, Case{"box:4,6,8", true},
                                            Case{"cylinder:3,10", false},
-                                           Case{"cutter:bull,10,2,25", false}),
+                                           Case{"cutter:bull,10,2,25", false},
+                                           Case{"@bodies/tetra.obj", true}),
                          [](const ::testing::TestParamInfo<Case>& i) {
-                           std::string name = i.param.body;
+                           std::string name =
+                               i.param.body[0] == '@' ? i.param.body + 8 : i.param.body;
                            for (char& ch : name)
                              if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
                            return name + (i.param.rational ? "_rational" : "_kks");
+                         });
+
+// The subgradient of a convex body's signed distance: sd(y) >= sd(x) + g . (y - x) for pairs
+// of points inside, near and outside the body; |g| <= 1; and g is the gradient (central
+// differences) where the distance is smooth, which the random points almost surely are.
+class Subgradient : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(Subgradient, SupportsTheSignedDistance) {
+  const auto body = qmotion::io::read_body(GetParam());
+  ASSERT_TRUE(qmotion::sweep::is_convex(body));
+  const double rho = qmotion::sweep::radius(body);
+  // Points in the body's bounding box grown by 30 % each side.
+  Eigen::AlignedBox3d box;
+  for (const auto& v : qmotion::sweep::triangulate(body, 1e-3 * rho).vertices) box.extend(v);
+  std::mt19937 gen(7);
+  std::uniform_real_distribution<double> u(-1.3, 1.3);
+  auto point = [&] {
+    const V3 s(u(gen), u(gen), u(gen));
+    return V3(box.center() + 0.5 * s.cwiseProduct(box.sizes()));
+  };
+  int inside = 0, smooth = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const V3 x = point(), y = i % 2 ? point() : x + 0.05 * rho * V3(u(gen), u(gen), u(gen));
+    V3 g;
+    const double sx = qmotion::sweep::signed_distance(body, x, g);
+    SCOPED_TRACE(std::string(GetParam()) + " point " + std::to_string(i));
+    EXPECT_NEAR(sx, qmotion::sweep::signed_distance(body, x), 1e-12 * rho);
+    EXPECT_LE(g.norm(), 1 + 1e-12);
+    EXPECT_GE(qmotion::sweep::signed_distance(body, y), sx + g.dot(y - x) - 1e-12 * rho);
+    inside += sx < 0;
+    // Central differences: the distance is smooth at x unless x is near a crease of it.
+    const double step = 1e-6 * rho;
+    V3 fd;
+    for (int a = 0; a < 3; ++a) {
+      V3 e = V3::Zero();
+      e(a) = step;
+      fd(a) = (qmotion::sweep::signed_distance(body, x + e) -
+               qmotion::sweep::signed_distance(body, x - e)) /
+              (2 * step);
+    }
+    if ((fd - g).norm() < 1e-4) ++smooth;
+  }
+  EXPECT_GT(inside, 100);
+  EXPECT_GT(smooth, 2800);  // all but points within about 1e-6 rho of a crease
+}
+
+INSTANTIATE_TEST_SUITE_P(Bodies, Subgradient,
+                         ::testing::Values("sphere:3", "box:4,6,8", "cylinder:3,10",
+                                           "cutter:flat,6,20", "cutter:ball,6,20",
+                                           "cutter:bull,10,2,25"),
+                         [](const ::testing::TestParamInfo<const char*>& i) {
+                           std::string name = i.param;
+                           for (char& ch : name)
+                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+                           return name;
                          });
 
 }  // namespace swept_volume_tests

@@ -251,21 +251,50 @@ namespace detail {
 /// edge, its outer corner, the side, the bottom or the corner arc, by the zone of (rho, z);
 /// inside, the depth is the least distance to the section's supporting lines (convex): the
 /// top, the side, the bottom and, in the corner's quadrant, the arc's tangents.
-inline double revolved_distance(double rho, double z, double R, double rc, double L) {
+/// `grad`, when given, receives the derivatives along rho and z of the piece that gives the
+/// value: the unit vector from the nearest point outside, the outward normal of the nearest
+/// supporting line inside.
+inline double revolved_distance(double rho, double z, double R, double rc, double L,
+                                double* grad = nullptr) {
+  auto with = [grad](double v, double dr, double dz) {
+    if (grad) {
+      grad[0] = dr;
+      grad[1] = dz;
+    }
+    return v;
+  };
   const double cx = R - rc, cz = rc;  // the corner arc's centre
   const bool corner = rho > cx && z < cz;
   const double dc = corner ? std::sqrt((rho - cx) * (rho - cx) + (z - cz) * (z - cz)) : 0.0;
-  if (z > L) return rho <= R ? z - L : std::sqrt((rho - R) * (rho - R) + (z - L) * (z - L));
-  if (corner) {
-    if (dc > rc) return dc - rc;
-  } else if (z < 0) {
-    return -z;
-  } else if (rho > R) {
-    return rho - R;
+  if (z > L) {
+    if (rho <= R) return with(z - L, 0, 1);
+    const double d = std::sqrt((rho - R) * (rho - R) + (z - L) * (z - L));
+    return with(d, (rho - R) / d, (z - L) / d);
   }
-  double depth = std::min({L - z, R - rho, z});
-  if (corner) depth = std::min(depth, rc - dc);
-  return -depth;
+  if (corner) {
+    if (dc > rc) return with(dc - rc, (rho - cx) / dc, (z - cz) / dc);
+  } else if (z < 0) {
+    return with(-z, 0, -1);
+  } else if (rho > R) {
+    return with(rho - R, 1, 0);
+  }
+  double depth = L - z, dr = 0, dz = 1;
+  if (R - rho < depth) {
+    depth = R - rho;
+    dr = 1;
+    dz = 0;
+  }
+  if (z < depth) {
+    depth = z;
+    dr = 0;
+    dz = -1;
+  }
+  if (corner && rc - dc < depth) {  // dc > 0: rho > cx
+    depth = rc - dc;
+    dr = (rho - cx) / dc;
+    dz = (z - cz) / dc;
+  }
+  return with(-depth, dr, dz);
 }
 
 /// The closest point to x on the triangle (a, b, c) (Ericson, Real-Time Collision
@@ -336,6 +365,64 @@ inline double signed_distance(const Body& body, const Eigen::Vector3d& x) {
                                                       : body.rc;
       return detail::revolved_distance(std::sqrt(x.x() * x.x() + x.y() * x.y()), x.z(), R, rc,
                                        body.L);
+    }
+    case K::mesh:
+      return detail::mesh_distance(body.mesh, x);
+  }
+  return HUGE_VAL;
+}
+
+/// Whether the body is convex: every kind but the mesh (which may be, but is not assumed).
+inline bool is_convex(const Body& body) { return body.kind != Body::Kind::mesh; }
+
+/// The signed distance from x to a convex body (is_convex), and a subgradient g of it at x:
+/// sd(y) >= sd(x) + g . (y - x) for every y, since the signed distance to a convex set is a
+/// convex function. g is the unit vector from the nearest point outside, the outward normal
+/// of the nearest face (or supporting plane) inside, and 0 where every direction is a
+/// subgradient's (the centre of a sphere, the axis of a revolved body). Up to rounding.
+inline double signed_distance(const Body& body, const Eigen::Vector3d& x, Eigen::Vector3d& g) {
+  using K = Body::Kind;
+  g.setZero();
+  switch (body.kind) {
+    case K::sphere: {
+      const double n = x.norm();
+      if (n > 0) g = x / n;
+      return n - body.r;
+    }
+    case K::box: {
+      const Eigen::Vector3d half = 0.5 * Eigen::Vector3d(body.a, body.b, body.c);
+      const Eigen::Vector3d q = x.cwiseAbs() - half;
+      const Eigen::Vector3d s(x.x() < 0 ? -1.0 : 1.0, x.y() < 0 ? -1.0 : 1.0,
+                              x.z() < 0 ? -1.0 : 1.0);
+      const Eigen::Vector3d out = q.cwiseMax(0.0);
+      const double n = out.norm();
+      if (n > 0) {
+        g = s.cwiseProduct(out) / n;
+        return n;
+      }
+      Eigen::Index i = 0;
+      const double m = q.maxCoeff(&i);
+      g(i) = s(i);
+      return m;
+    }
+    case K::cylinder:
+    case K::flat_cutter:
+    case K::ball_cutter:
+    case K::bull_cutter: {
+      const bool cyl = body.kind == K::cylinder;
+      const double R = cyl ? body.r : body.D / 2;
+      const double rc = cyl || body.kind == K::flat_cutter ? 0.0
+                        : body.kind == K::ball_cutter      ? R
+                                                           : body.rc;
+      const double rho = std::sqrt(x.x() * x.x() + x.y() * x.y());
+      double d[2];
+      const double v = detail::revolved_distance(rho, x.z(), R, rc, cyl ? body.h : body.L, d);
+      if (rho > 0) {
+        g.x() = d[0] * x.x() / rho;
+        g.y() = d[0] * x.y() / rho;
+      }
+      g.z() = d[1];
+      return v;
     }
     case K::mesh:
       return detail::mesh_distance(body.mesh, x);

@@ -56,7 +56,12 @@ class SweptVolumeTree {
   /// Errc::numerical_failure for a rational motion with a pole on its interval, or when a
   /// node narrower than 1e-12 of the interval cannot reach the leaf size.
   SweptVolumeTree(const qmotion::Motion& m, const Body& body, double leaf_delta)
-      : motion_(m), body_(body), rho_(radius(body)), bound_(m, radius(body), 4), leaf_(leaf_delta) {
+      : motion_(m),
+        body_(body),
+        convex_(is_convex(body)),
+        rho_(radius(body)),
+        bound_(m, radius(body), 4),
+        leaf_(leaf_delta) {
     ball_centre_ = ball_centre(body);
     ball_radius_ = 0;
     for (const auto& v : triangulate(body, 1e-3 * rho_).vertices)
@@ -88,10 +93,11 @@ class SweptVolumeTree {
     return box;
   }
 
-  /// Bounds of the distance from q to V by branch and bound over the tree. A node is not
-  /// opened when its lower bound is no better than an upper bound already found. The search
-  /// ends at the first placement whose signed distance is below stop_below (<= 0: q lies
-  /// in V that deep; then lower = 0).
+  /// Bounds of the distance from q to V by branch and bound over the tree on the signed
+  /// distance to the placed body: a node is not opened when its lower bound is no better than
+  /// the best placement's. Once a placement holds q, lower = 0 is exact and the search goes
+  /// on for the deepest placement. It ends at the first placement whose signed distance is
+  /// below stop_below (<= 0: q lies in V that deep).
   VolumeDistance query(const Eigen::Vector3d& q, double stop_below = 0) const {
     VolumeDistance out;
     out.lower = HUGE_VAL;
@@ -103,13 +109,13 @@ class SweptVolumeTree {
       const auto [i, parent_lb] = stack.back();
       stack.pop_back();
       const Node& n = nodes_[i];
-      if (parent_lb >= std::max(best, 0.0)) {  // the parent's bound already says no
+      if (parent_lb >= best) {  // the parent's bound already says no
         out.lower = std::min(out.lower, parent_lb);
         continue;
       }
       // A cheap bound from the bounding ball, then the body itself.
       const double ball = (q - n.centre).norm() - ball_radius_ - n.delta;
-      if (ball >= std::max(best, 0.0)) {
+      if (ball >= best) {
         out.lower = std::min(out.lower, ball);
         continue;
       }
@@ -124,7 +130,7 @@ class SweptVolumeTree {
         out.lower = 0;
         return out;
       }
-      if (n.child[0] < 0 || lb >= std::max(best, 0.0)) {
+      if (n.child[0] < 0 || lb >= best) {
         out.lower = std::min(out.lower, lb);
         continue;
       }
@@ -155,17 +161,50 @@ class SweptVolumeTree {
   }
 
   /// The leaves that can hold the nearest placement for some point within r of c, for a
+  /// batch of queries about c (see candidates()), and what bounds them for such a point.
+  struct Candidates {
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    double r = 0;
+    /// The smallest lb - r of the nodes left out: a lower bound, for every x within r of c,
+    /// of its distance to the part of V they sweep.
+    double rest = HUGE_VAL;
+    /// narrow(): the signed distance from c to the body placed by best_node (-1: none), an
+    /// upper bound of f(c), and the least lower bound for the ball, lower.
+    double best = HUGE_VAL, lower = HUGE_VAL;
+    int best_node = -1;
+    std::vector<int> node;
+    std::vector<double> bound;  ///< the leaf's bound at c less r: a lower bound for every x
+    /// A convex body's plane bound: base + g . x <= sd_K(M(tm)^-1 x) - Delta for every x, with
+    /// g the subgradient of the signed distance at c (see signed_distance with g).
+    std::vector<double> base, gx, gy, gz;
+    void clear() {
+      node.clear();
+      bound.clear();
+      base.clear();
+      gx.clear();
+      gy.clear();
+      gz.clear();
+    }
+  };
+
+  /// The leaves that can hold the nearest placement for some point within r of c, for a
   /// batch of queries about c. A node whose bound at c, lb, is at least best + 2 r (best: the
   /// smallest signed distance from c to a placement seen) is left out: for x within r of c
   /// its bound is at least lb - r >= best + r, and best + r bounds x's distance from above.
-  /// `rest` receives the smallest lb - r of the nodes left out: a lower bound, for every such
-  /// x, of its distance to the part of V they sweep. The leaves come with their bound at c
-  /// less r (a lower bound for every such x), smallest first.
-  void candidates(const Eigen::Vector3d& c, double r, std::vector<std::pair<int, double>>& leaves,
-                  double& rest) const {
-    leaves.clear();
+  /// For a convex body, each leaf also gets the plane through its signed distance at c along
+  /// a subgradient there: a lower bound of the signed distance everywhere, exact to first
+  /// order about c.
+  void candidates(const Eigen::Vector3d& c, double r, Candidates& out) const {
+    out.clear();
+    out.c = c;
+    out.r = r;
     thread_local std::vector<std::pair<int, double>> stack;  // node, its bound at c
-    thread_local std::vector<std::pair<int, double>> found;  // leaf, its bound at c
+    struct Found {
+      int node;
+      double lb, sd;
+      Eigen::Vector3d g;
+    };
+    thread_local std::vector<Found> found;
     stack.clear();
     found.clear();
     double best = HUGE_VAL, left_out = HUGE_VAL;
@@ -183,15 +222,18 @@ class SweptVolumeTree {
         left_out = std::min(left_out, ball);
         continue;
       }
-      const double sd = signed_distance(body_, n.Rt * (c - n.p));
+      const bool leaf = n.child[0] < 0;
+      Eigen::Vector3d g = Eigen::Vector3d::Zero();
+      const double sd = leaf && convex_ ? signed_distance(body_, n.Rt * (c - n.p), g)
+                                        : signed_distance(body_, n.Rt * (c - n.p));
       best = std::min(best, sd);
       const double lb = std::max(ball, sd - n.delta);
       if (lb >= best + 2 * r) {
         left_out = std::min(left_out, lb);
         continue;
       }
-      if (n.child[0] < 0) {
-        found.emplace_back(i, lb);
+      if (leaf) {
+        found.push_back({i, lb, sd, n.Rt.transpose() * g});
         continue;
       }
       const Node &c0 = nodes_[static_cast<std::size_t>(n.child[0])],
@@ -201,42 +243,130 @@ class SweptVolumeTree {
       stack.emplace_back(first0 ? n.child[0] : n.child[1], lb);
     }
     // Leaves found before best fell far enough are left out now.
-    for (const auto& [i, lb] : found)
-      if (lb < best + 2 * r)
-        leaves.emplace_back(i, lb - r);
-      else
-        left_out = std::min(left_out, lb);
-    std::sort(leaves.begin(), leaves.end(),
-              [](const auto& a, const auto& b) { return a.second < b.second; });
-    rest = left_out - r;
+    for (const auto& f : found) {
+      if (f.lb >= best + 2 * r) {
+        left_out = std::min(left_out, f.lb);
+        continue;
+      }
+      out.node.push_back(f.node);
+      out.bound.push_back(f.lb - r);
+      if (convex_) {
+        // Rounding: the plane is lowered by 1e-12 of the sizes it sums.
+        const double delta = nodes_[static_cast<std::size_t>(f.node)].delta;
+        const double gc = f.g.dot(c);
+        out.base.push_back(f.sd - delta - gc -
+                           1e-12 * (std::abs(f.sd) + std::abs(gc) + delta + r + rho_));
+        out.gx.push_back(f.g.x());
+        out.gy.push_back(f.g.y());
+        out.gz.push_back(f.g.z());
+      }
+    }
+    out.rest = left_out - r;
+  }
+
+  /// The candidates of a smaller batch, about c within r, whose ball lies in wide's: wide's
+  /// leaves less those that cannot hold the nearest placement for a point of the new ball.
+  /// Each leaf's bound for the ball is the larger of wide's and its plane at c less r; the
+  /// least is placed at c, best, and a leaf whose bound is at least best + r is left out (a
+  /// point of the ball is within best + r of that placement).
+  void narrow(const Candidates& wide, const Eigen::Vector3d& c, double r, Candidates& out) const {
+    out.clear();
+    out.c = c;
+    out.r = r;
+    out.rest = wide.rest;
+    const std::size_t n = wide.node.size();
+    thread_local std::vector<double> lb;
+    lb.resize(n);
+    const double reach = r * (1 + 1e-12);  // |g| <= 1 up to rounding
+    for (std::size_t k = 0; k < n; ++k) {
+      double b = wide.bound[k];
+      if (convex_)
+        b = std::max(
+            b, wide.base[k] + wide.gx[k] * c.x() + wide.gy[k] * c.y() + wide.gz[k] * c.z() - reach);
+      lb[k] = b;
+    }
+    std::size_t first = n;
+    double least = HUGE_VAL;
+    for (std::size_t k = 0; k < n; ++k)
+      if (lb[k] < least) {
+        least = lb[k];
+        first = k;
+      }
+    out.best = HUGE_VAL;
+    out.best_node = -1;
+    out.lower = std::min(out.rest, least);
+    if (first == n) return;
+    const double best = node_distance(c, wide.node[first]);
+    out.best = best;
+    out.best_node = wide.node[first];
+    for (std::size_t k = 0; k < n; ++k) {
+      if (lb[k] >= best + r) {
+        out.rest = std::min(out.rest, lb[k]);
+        continue;
+      }
+      out.node.push_back(wide.node[k]);
+      out.bound.push_back(lb[k]);
+      if (convex_) {
+        out.base.push_back(wide.base[k]);
+        out.gx.push_back(wide.gx[k]);
+        out.gy.push_back(wide.gy[k]);
+        out.gz.push_back(wide.gz[k]);
+      }
+    }
   }
 
   /// What query(x) learns from the candidates of a batch about c (candidates(c, r, ...)), for
-  /// x within r of c. The leaves are taken in turn until the next one's bound for every such
-  /// x is no lower than what is known less `slack` (then lower is at most slack below what the
-  /// whole list would give), or until a placement holds x deeper than stop_depth.
-  VolumeDistance query_among(const Eigen::Vector3d& x,
-                             const std::vector<std::pair<int, double>>& leaves, double rest,
-                             double slack, double stop_depth) const {
+  /// x within r of c. Every leaf has a lower bound at x without placing the body (its bound
+  /// at c less r, and for a convex body its plane); the leaf with the least is placed first,
+  /// then every other whose bound is below what is known less `slack` (so that lower is at
+  /// most slack below what placing them all would give). It stops when a placement holds x
+  /// deeper than stop_depth.
+  VolumeDistance query_among(const Eigen::Vector3d& x, const Candidates& cands, double slack,
+                             double stop_depth) const {
     VolumeDistance out;
-    double lower = rest, best = HUGE_VAL;
-    for (const auto& [i, bound] : leaves) {
-      if (bound >= std::min(lower, std::max(best, 0.0)) - slack) {
-        lower = std::min(lower, bound);  // the leaves not taken: bound, and above
-        break;
+    const std::size_t n = cands.node.size();
+    thread_local std::vector<double> lin;
+    lin.resize(n);
+    double* const l = lin.data();
+    const double *bound = cands.bound.data(), *base = cands.base.data(), *gx = cands.gx.data(),
+                 *gy = cands.gy.data(), *gz = cands.gz.data();
+    if (convex_) {
+      const double x0 = x.x(), x1 = x.y(), x2 = x.z();
+      for (std::size_t k = 0; k < n; ++k) {
+        const double p = base[k] + gx[k] * x0 + gy[k] * x1 + gz[k] * x2;
+        l[k] = bound[k] > p ? bound[k] : p;
       }
-      const Node& n = nodes_[static_cast<std::size_t>(i)];
-      const double sd = signed_distance(body_, n.Rt * (x - n.p));
-      lower = std::min(lower, sd - n.delta);
+    } else {
+      std::copy(bound, bound + n, l);
+    }
+    std::size_t first = n;
+    double least = HUGE_VAL;
+    for (std::size_t k = 0; k < n; ++k)
+      if (l[k] < least) {
+        least = l[k];
+        first = k;
+      }
+    double known = cands.rest, skipped = HUGE_VAL, best = HUGE_VAL;
+    auto place = [&](std::size_t k) {
+      const int i = cands.node[k];
+      const double sd = node_distance(x, i);
+      known = std::min(known, std::max(lin[k], sd - nodes_[static_cast<std::size_t>(i)].delta));
       if (sd < best) {
         best = sd;
         out.node = i;
-        if (best <= -stop_depth) break;
       }
+    };
+    if (first < n) place(first);
+    for (std::size_t k = 0; k < n && best > -stop_depth; ++k) {
+      if (k == first) continue;
+      if (lin[k] >= std::min(known, std::max(best, 0.0)) - slack)
+        skipped = std::min(skipped, lin[k]);
+      else
+        place(k);
     }
     out.signed_upper = best;
     if (out.node >= 0) found_at(out, out.node);
-    out.lower = std::max(0.0, std::min(lower, std::max(best, 0.0)));
+    out.lower = std::max(0.0, std::min({known, skipped, std::max(best, 0.0)}));
     return out;
   }
 
@@ -310,6 +440,7 @@ class SweptVolumeTree {
   static constexpr std::size_t max_nodes = 1 << 22;
   const qmotion::Motion& motion_;
   const Body& body_;
+  bool convex_;
   double rho_;
   KeyframeBound bound_;
   double leaf_;
