@@ -276,22 +276,8 @@ class SweptVolumeTree {
     out.rest = wide.rest;
     const std::size_t n = wide.node.size();
     thread_local std::vector<double> lb;
-    lb.resize(n);
-    const double reach = r * (1 + 1e-12);  // |g| <= 1 up to rounding
-    for (std::size_t k = 0; k < n; ++k) {
-      double b = wide.bound[k];
-      if (convex_)
-        b = std::max(
-            b, wide.base[k] + wide.gx[k] * c.x() + wide.gy[k] * c.y() + wide.gz[k] * c.z() - reach);
-      lb[k] = b;
-    }
-    std::size_t first = n;
-    double least = HUGE_VAL;
-    for (std::size_t k = 0; k < n; ++k)
-      if (lb[k] < least) {
-        least = lb[k];
-        first = k;
-      }
+    const std::size_t first = bounds_at(wide, c, r * (1 + 1e-12), lb);  // |g| <= 1 up to rounding
+    const double least = first < n ? lb[first] : HUGE_VAL;
     out.best = HUGE_VAL;
     out.best_node = -1;
     out.lower = std::min(out.rest, least);
@@ -326,26 +312,7 @@ class SweptVolumeTree {
     VolumeDistance out;
     const std::size_t n = cands.node.size();
     thread_local std::vector<double> lin;
-    lin.resize(n);
-    double* const l = lin.data();
-    const double *bound = cands.bound.data(), *base = cands.base.data(), *gx = cands.gx.data(),
-                 *gy = cands.gy.data(), *gz = cands.gz.data();
-    if (convex_) {
-      const double x0 = x.x(), x1 = x.y(), x2 = x.z();
-      for (std::size_t k = 0; k < n; ++k) {
-        const double p = base[k] + gx[k] * x0 + gy[k] * x1 + gz[k] * x2;
-        l[k] = bound[k] > p ? bound[k] : p;
-      }
-    } else {
-      std::copy(bound, bound + n, l);
-    }
-    std::size_t first = n;
-    double least = HUGE_VAL;
-    for (std::size_t k = 0; k < n; ++k)
-      if (l[k] < least) {
-        least = l[k];
-        first = k;
-      }
+    const std::size_t first = bounds_at(cands, x, 0, lin);
     double known = cands.rest, skipped = HUGE_VAL, best = HUGE_VAL;
     auto place = [&](std::size_t k) {
       const int i = cands.node[k];
@@ -377,6 +344,36 @@ class SweptVolumeTree {
   }
 
  private:
+  /// Every candidate's lower bound for the points within `reach` of x: the larger of its
+  /// bound and, for a convex body, its plane at x less reach (a plane's slope |g| is at most
+  /// one). The loop runs over plain arrays, so that it vectorises. Returns the index of the
+  /// least (the candidates' number when there are none).
+  std::size_t bounds_at(const Candidates& cands, const Eigen::Vector3d& x, double reach,
+                        std::vector<double>& out) const {
+    const std::size_t n = cands.node.size();
+    out.resize(n);
+    double* const l = out.data();
+    const double *bound = cands.bound.data(), *base = cands.base.data(), *gx = cands.gx.data(),
+                 *gy = cands.gy.data(), *gz = cands.gz.data();
+    if (convex_) {
+      const double x0 = x.x(), x1 = x.y(), x2 = x.z();
+      for (std::size_t k = 0; k < n; ++k) {
+        const double p = base[k] + gx[k] * x0 + gy[k] * x1 + gz[k] * x2 - reach;
+        l[k] = bound[k] > p ? bound[k] : p;
+      }
+    } else {
+      std::copy(bound, bound + n, l);
+    }
+    std::size_t first = n;
+    double least = HUGE_VAL;
+    for (std::size_t k = 0; k < n; ++k)
+      if (l[k] < least) {
+        least = l[k];
+        first = k;
+      }
+    return first;
+  }
+
   static Eigen::Vector3d ball_centre(const Body& b) {
     using K = Body::Kind;
     switch (b.kind) {
