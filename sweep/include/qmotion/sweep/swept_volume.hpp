@@ -163,8 +163,6 @@ class SweptVolumeTree {
   /// The leaves that can hold the nearest placement for some point within r of c, for a
   /// batch of queries about c (see candidates()), and what bounds them for such a point.
   struct Candidates {
-    Eigen::Vector3d c = Eigen::Vector3d::Zero();
-    double r = 0;
     /// The smallest lb - r of the nodes left out: a lower bound, for every x within r of c,
     /// of its distance to the part of V they sweep.
     double rest = HUGE_VAL;
@@ -196,8 +194,6 @@ class SweptVolumeTree {
   /// order about c.
   void candidates(const Eigen::Vector3d& c, double r, Candidates& out) const {
     out.clear();
-    out.c = c;
-    out.r = r;
     thread_local std::vector<std::pair<int, double>> stack;  // node, its bound at c
     struct Found {
       int node;
@@ -271,8 +267,6 @@ class SweptVolumeTree {
   /// point of the ball is within best + r of that placement).
   void narrow(const Candidates& wide, const Eigen::Vector3d& c, double r, Candidates& out) const {
     out.clear();
-    out.c = c;
-    out.r = r;
     out.rest = wide.rest;
     const std::size_t n = wide.node.size();
     thread_local std::vector<double> lb;
