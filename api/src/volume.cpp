@@ -13,6 +13,8 @@
 #include <qmotion/io/units.hpp>
 #include <qmotion/kernel/error.hpp>
 #include <qmotion/kernel/interpolation.hpp>
+#include <qmotion/sweep/pipe_approx.hpp>
+#include <qmotion/sweep/pipe_reach.hpp>
 #include <qmotion/sweep/trajectory.hpp>
 
 #include "volume_detail.hpp"
@@ -53,7 +55,11 @@ sweep::PipeShell exact_swept_volume(const Motion& motion, const sweep::Body& bod
   const bool sphere = body.kind == sweep::Body::Kind::sphere;
   const double r = sphere ? body.r : body.D / 2;
   const Eigen::Vector3d centre = sphere ? Eigen::Vector3d::Zero() : Eigen::Vector3d(0, 0, r);
-  return sweep::pipe_shell(sweep::point_trajectory(motion.rational(), centre), r, motion.label());
+  const auto path = sweep::point_trajectory(motion.rational(), centre);
+  sweep::PipeShell pipe = sweep::pipe_shell(path, r, motion.label());
+  // The faces bound the swept volume only where the pipe does not overlap itself.
+  pipe.reach = sweep::pipe_overlap_free(path, r, motion.label());
+  return pipe;
 }
 
 nlohmann::json VolumeReport::report() const {
@@ -64,17 +70,30 @@ nlohmann::json VolumeReport::report() const {
             {"units", units},
             {"exact", true},
             {"route",
-             "exact faces: the pipe around the sphere centre's rational trajectory and its two "
-             "half-sphere caps (docs/geometry.md, Exact pipe surfaces)"},
+             approximated
+                 ? "faces of degree 9 within approximation_bound of the exact pipe around the "
+                   "sphere centre's rational trajectory (of exact_degree), its end circles and "
+                   "half-sphere caps exact (docs/geometry.md, Pipes of a low degree)"
+                 : "exact faces: the pipe around the sphere centre's rational trajectory and its "
+                   "two half-sphere caps (docs/geometry.md, Exact pipe surfaces)"},
+            {"approximation", approximated ? nlohmann::json{{"bound", approximation_bound},
+                                                            {"degree", degree},
+                                                            {"exact_degree", exact_degree}}
+                                           : nlohmann::json(nullptr)},
             {"exact_part", exact_part},
             {"radius", radius},
             {"faces", faces},
             {"pipe_faces", pipe_faces},
             {"pieces", pieces},
             {"degree", degree},
-            {"distance_bound", 0.0},
+            {"distance_bound", approximation_bound},
             {"measured_distance", radius_deviation * radius},
             {"orthogonality", orthogonality},
+            {"overlap_free",
+             {{"curvature_radius_bound", curvature_radius},
+              {"radius", radius},
+              {"pieces", reach_pieces},
+              {"pairs", reach_pairs}}},
             {"volume", exact_volume},
             {"volume_bounds",
              has_bounds ? nlohmann::json{v.volume_lower, v.volume_upper} : nlohmann::json(nullptr)},
@@ -94,6 +113,7 @@ nlohmann::json VolumeReport::report() const {
           {"triangles", triangles},
           {"vertices", vertices},
           {"closed", closed},
+          {"float32_rounding", v.rounding},
           {"route",
            "marching tetrahedra on a certified lower bound of the distance to the swept volume "
            "(docs/geometry.md, Swept volumes)"},
@@ -108,10 +128,15 @@ nlohmann::json VolumeReport::report() const {
 
 namespace {
 
+/// A pipe above STEP/IGES's degree is written at this degree (every CAD system reads it)...
+constexpr int kLowDegree = 9;
+/// ... within this fraction of its bounding-box diagonal of the exact pipe.
+constexpr double kApproximation = 1e-6;
+
 /// The volume's figures (without its mesh) scaled by f, lengths and volumes.
 SweptVolume in_unit(SweptVolume v, double f) {
   for (double* x : {&v.tolerance, &v.distance_bound, &v.measured_distance, &v.grid_step, &v.level,
-                    &v.piece_delta})
+                    &v.piece_delta, &v.rounding})
     *x *= f;
   v.volume_lower *= f * f * f;
   v.volume_upper *= f * f * f;
@@ -124,13 +149,19 @@ void write_exact(const Motion& motion, const sweep::Body& body, const VolumeOpti
                  const std::string& ext, double f, VolumeReport& r) {
   sweep::PipeShell pipe = exact_swept_volume(motion, body);
   const bool cad = ext != ".json";
-  if (cad && pipe.degree_t > io::occt_max_degree())
-    throw Error(Errc::numerical_failure,
-                o.output + ": the exact pipe has degree " + std::to_string(pipe.degree_t) +
-                    " along t, above the " + std::to_string(io::occt_max_degree()) +
-                    " that OpenCASCADE (and so STEP/IGES export) stores (the centre's path is " +
-                    "rational of high degree, e.g. a tilting ball cutter's); write .json for the "
-                    "exact faces, or .stl for a mesh within --tol");
+  if (cad && pipe.degree_t > io::occt_max_degree()) {
+    // Above what STEP/IGES store: faces of degree kLowDegree within a proven distance of the
+    // exact ones (sweep/pipe_approx.hpp); the end circles and the caps stay exact.
+    const double target = kApproximation * sweep::diagonal(pipe.shell);
+    sweep::LowDegreePipe low = sweep::pipe_to_degree(pipe, kLowDegree, target, o.output);
+    r.approximated = true;
+    r.approximation_bound = f * low.bound;
+    r.exact_degree = pipe.degree_t;
+    pipe.shell = std::move(low.shell);
+    pipe.pipe_faces = low.pipe_faces;
+    pipe.degree_t = low.degree;
+    pipe.volume = low.volume;
+  }
   for (auto& face : pipe.shell.faces)
     for (auto& row : face.points)
       for (auto& x : row) x *= f;
@@ -148,6 +179,9 @@ void write_exact(const Motion& motion, const sweep::Body& body, const VolumeOpti
   r.pieces = pipe.pieces;
   r.degree = pipe.degree_t;
   r.orthogonality = pipe.orthogonality;
+  r.curvature_radius = f * pipe.reach.curvature_radius;
+  r.reach_pieces = pipe.reach.pieces;
+  r.reach_pairs = pipe.reach.pairs;
   r.radius_deviation = pipe.radius_deviation;
   r.exact_volume = pipe.volume * f * f * f;
   r.closed = true;
@@ -165,6 +199,11 @@ void write_exact(const Motion& motion, const sweep::Body& body, const VolumeOpti
   io::ExportInfo info;
   info.units = r.units;
   info.description = motion.label() + " swept by " + body.spec;
+  if (r.approximated)
+    info.description +=
+        ": an approximation of degree " + std::to_string(r.degree) +
+        " of the exact pipe of degree " + std::to_string(r.exact_degree) + ", every point within " +
+        kernel::detail::format_double(r.approximation_bound) + " " + r.units + " of it (proven)";
   if (ext == ".json") {
     nlohmann::json extra{{"units", r.units}, {"body", r.body}, {"volume", r.exact_volume}};
     io::write_shell_json(o.output, pipe.shell.faces, true, extra);
@@ -214,7 +253,12 @@ VolumeReport volume(const Motion& motion, const VolumeOptions& o) {
   }
   std::optional<double> tol;
   if (o.tol) tol = *o.tol / f;
-  SweptVolume v = swept_volume(motion, body, tol);
+  // What is written is what was certified: a binary STL's float32 vertices are the ones
+  // bounded, and closedness is measured on them.
+  VolumeRounding rounding;
+  rounding.float32 = ext == ".stl" && !o.ascii;
+  rounding.scale = f;
+  SweptVolume v = swept_volume(motion, body, tol, rounding);
   io::Mesh mesh;
   mesh.vertices.reserve(v.vertices.size());
   for (const auto& x : v.vertices) mesh.vertices.push_back(f * x);
@@ -223,7 +267,7 @@ VolumeReport volume(const Motion& motion, const VolumeOptions& o) {
   r.volume = in_unit(std::move(v), f);
   r.triangles = mesh.triangles.size();
   r.vertices = mesh.vertices.size();
-  r.closed = true;  // by construction (the tests check it with CGAL)
+  r.closed = v.closed;  // measured on the coordinates as written
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (ext == ".json") {
     nlohmann::json j = {{"kind", "swept_volume_mesh"}, {"units", r.units}, {"body", r.body}};

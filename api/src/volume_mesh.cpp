@@ -55,12 +55,14 @@ class Lattice {
     std::vector<int> node_at;     // near: the tree's best placement found for the vertex
   };
 
-  Lattice(const sweep::SweptVolumeTree& tree, const Eigen::AlignedBox3d& box, double h, double tau)
+  /// eps: how far from tau a vertex's value is kept (at least 1e-7 h).
+  Lattice(const sweep::SweptVolumeTree& tree, const Eigen::AlignedBox3d& box, double h, double tau,
+          double eps)
       : tree_(tree),
         box_(box),
         h_(h),
         tau_(tau),
-        eps_(1e-7 * h),
+        eps_(std::max(1e-7 * h, eps)),
         far_(tau + kSqrt3 * h + tree.largest_leaf_delta() + kSlack * tau + 2 * eps_),
         stop_depth_(1.01 * kSqrt3 * h) {
     const double pad = tau + 3 * h;
@@ -594,7 +596,8 @@ Eigen::AlignedBox3d sampled_box(const Motion& m, const sweep::Body& body) {
 
 }  // namespace detail
 
-SweptVolume swept_volume(const Motion& motion, const sweep::Body& body, std::optional<double> tol) {
+SweptVolume swept_volume(const Motion& motion, const sweep::Body& body, std::optional<double> tol,
+                         const VolumeRounding& rounding) {
   sweep::validate(body);
   if (tol && (!(*tol > 0) || !std::isfinite(*tol)))
     throw Error(Errc::invalid_input, "volume: the tolerance must be a positive length, got " +
@@ -623,9 +626,25 @@ SweptVolume swept_volume(const Motion& motion, const sweep::Body& body, std::opt
   // (0.1 T) where the lower bound is loose; measured, about 1.2 tau. Start with tau = 0.72 T
   // and make the lattice finer while a vertex's bound exceeds T.
   double h = 2 * 0.72 * T / kSqrt3;
+  double eps_factor = 4;  // see float32 below
   for (out.rounds = 1;; ++out.rounds) {
-    const double tau = 0.5 * kSqrt3 * h * (1 + 1e-9) + 1e-12 * scale;
-    Lattice lattice(tree, box, h, tau);
+    // Written as float32, a vertex moves by up to e (detail::float32_rounding): the mesh is
+    // made to enclose V grown by e (the level rises by e), so that the rounded mesh, every
+    // point of which moves by at most e, still winds once around every point of V. eps keeps
+    // the vertices' values that far from the level that no two vertices round to one point
+    // (docs/guide/volume.md, "What is written is what was certified"); closed_as_written
+    // measures it, and a round that fails it is made again with a wider eps.
+    const double e = rounding.float32 ? detail::float32_written(box, T, h, rounding) : 0.0;
+    const double tau = 0.5 * kSqrt3 * h * (1 + 1e-9) + 1e-12 * scale + e;
+    const double eps = eps_factor * e * (2.2 * h + tree.largest_leaf_delta()) / h;
+    if (eps > 0.1 * h)
+      throw Error(Errc::invalid_input,
+                  motion.label() + ": binary STL rounds the coordinates to float32, by up to " +
+                      kernel::detail::format_double(e * rounding.scale) +
+                      " here: too coarse for the tolerance " +
+                      kernel::detail::format_double(T * rounding.scale) +
+                      "; write .ply or .obj (double coordinates), or raise --tol");
+    Lattice lattice(tree, box, h, tau, eps);
     lattice.evaluate(queries);
     Surface s = extract(lattice);
     if (s.triangles.size() > 10'000'000)
@@ -633,6 +652,14 @@ SweptVolume swept_volume(const Motion& motion, const sweep::Body& body, std::opt
                   motion.label() + ": the enclosing mesh within the tolerance " +
                       kernel::detail::format_double(T) + " would have more than 10^7 triangles (" +
                       std::to_string(s.triangles.size()) + "): raise --tol");
+    // The mesh before rounding encloses V and is embedded: its volume bounds V's.
+    const double enclosed = enclosed_volume(s, box.center());
+    if (rounding.float32) detail::round_to_float32(s.vertices, rounding.scale);
+    const bool closed = detail::closed_as_written(s.vertices, s.triangles);
+    if (!closed && rounding.float32 && out.rounds < 4) {
+      eps_factor *= 4;
+      continue;
+    }
     // Each vertex's distance to V, bounded from above by the best placement the tree finds.
     // The placements nearest the edge's ends come first: one within 0.85 T settles the
     // vertex; else the tree is searched.
@@ -677,8 +704,8 @@ SweptVolume swept_volume(const Motion& motion, const sweep::Body& body, std::opt
       });
       for (double m : measured) out.measured_distance = std::max(out.measured_distance, m);
       out.measured_vertices = measured.size();
-      const Eigen::Vector3d o = box.center();
-      const double enclosed = enclosed_volume(s, o);
+      out.rounding = e;
+      out.closed = closed;
       out.volume_upper = enclosed * (1 + 1e-9);
       out.volume_lower = std::min(s.inside_volume * (1 - 1e-9), out.volume_upper);
       out.vertices = std::move(s.vertices);

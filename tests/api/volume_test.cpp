@@ -12,7 +12,10 @@
 
 #include <cctype>
 #include <cmath>
+#include <cstring>
+#include <fstream>
 #include <iostream>
+#include <iterator>
 #include <map>
 #include <qmotion/io/bodies.hpp>
 #include <qmotion/qmotion.hpp>
@@ -108,6 +111,70 @@ void expect_closed_oriented(const SweptVolume& v) {
   }
 }
 
+/// The distance from x to the swept volume by a search of the test's own: the body's signed
+/// distance at 400 times and golden sections about the best (an upper bound of it).
+double searched_distance(const Motion& m, const sweep::Body& body, const V3& x) {
+  auto dist = [&](double t) {
+    const Eigen::Matrix4d f = m.frame(t);
+    return sweep::signed_distance(body,
+                                  f.block<3, 3>(1, 1).transpose() * (x - f.block<3, 1>(1, 0)));
+  };
+  const int n = 400;
+  int best = 0;
+  double fbest = HUGE_VAL;
+  for (int j = 0; j <= n; ++j) {
+    const double f = dist(m.a() + (m.b() - m.a()) * j / n);
+    if (f < fbest) fbest = f, best = j;
+  }
+  double lo = m.a() + (m.b() - m.a()) * std::max(0, best - 1) / n;
+  double hi = m.a() + (m.b() - m.a()) * std::min(n, best + 1) / n;
+  for (int it = 0; it < 40; ++it) {
+    const double a = lo + (hi - lo) * 0.382, b = lo + (hi - lo) * 0.618;
+    const double fa = dist(a), fb = dist(b);
+    fbest = std::min({fbest, fa, fb});
+    (fa < fb ? hi : lo) = fa < fb ? b : a;
+  }
+  return std::max(fbest, 0.0);
+}
+
+/// How many of 20 000 points of the swept volume, at random t, lie outside the mesh (CGAL's
+/// Side_of_triangle_mesh): points on the body's boundary, inside it (the body is convex: the
+/// middle of two boundary points), and for the sphere on the exact envelope c(t) + r n, n
+/// normal to c'(t).
+int points_outside(const Motion& m, const sweep::Body& body, const CgalMesh& cm, unsigned seed) {
+  const CGAL::Side_of_triangle_mesh<CgalMesh, K> side(cm);
+  std::mt19937 g(seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  int outside = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const double t = m.a() + (m.b() - m.a()) * u(g);
+    V3 x;
+    if (i % 3 == 0) {
+      x = m.place(t, surface_point(body, g));
+    } else if (i % 3 == 1) {
+      x = m.place(t, 0.5 * (surface_point(body, g) + surface_point(body, g)));
+    } else if (body.kind == sweep::Body::Kind::sphere) {
+      const V3 d = m.point_velocity(t, V3::Zero()).normalized();
+      V3 n = d.cross(V3(u(g) - 0.5, u(g) - 0.5, u(g) - 0.5)).normalized();
+      x = m.place(t, V3::Zero()) + body.r * n;
+    } else {
+      x = m.place(t, surface_point(body, g));
+    }
+    outside += side(K::Point_3(x.x(), x.y(), x.z())) == CGAL::ON_UNBOUNDED_SIDE;
+  }
+  return outside;
+}
+
+/// Closed and oriented (every directed edge once), and by CGAL a valid closed polygon mesh,
+/// free of self-intersections, facing outward.
+void expect_valid_mesh(const SweptVolume& v, const CgalMesh& cm) {
+  expect_closed_oriented(v);
+  ASSERT_TRUE(CGAL::is_valid_polygon_mesh(cm));
+  ASSERT_TRUE(CGAL::is_closed(cm));
+  EXPECT_FALSE(PMP::does_self_intersect(cm));
+  EXPECT_TRUE(PMP::is_outward_oriented(cm));
+}
+
 struct Case {
   const char* body;
   bool rational;
@@ -128,65 +195,19 @@ TEST_P(Enclosure, HoldsSampledPointsAndEveryVertexIsWithinTheTolerance) {
   EXPECT_LT(v.volume_lower, v.volume_upper);
 
   // The mesh: closed, oriented, a 2-manifold without self-intersections, facing outward.
-  expect_closed_oriented(v);
   const CgalMesh cm = to_cgal(v);
-  ASSERT_TRUE(CGAL::is_valid_polygon_mesh(cm));
-  ASSERT_TRUE(CGAL::is_closed(cm));
-  EXPECT_FALSE(PMP::does_self_intersect(cm));
-  EXPECT_TRUE(PMP::is_outward_oriented(cm));
+  expect_valid_mesh(v, cm);
 
   // Containment: 20 000 points of the swept volume, at random t: on the body's boundary,
   // inside it (the body is convex: the middle of two boundary points), and for the sphere
   // on the exact envelope c(t) + r n, n normal to c'(t).
-  const CGAL::Side_of_triangle_mesh<CgalMesh, K> side(cm);
-  std::mt19937 g(31);
-  std::uniform_real_distribution<double> u(0, 1);
-  int outside = 0;
-  for (int i = 0; i < 20000; ++i) {
-    const double t = m.a() + (m.b() - m.a()) * u(g);
-    V3 x;
-    if (i % 3 == 0) {
-      x = m.place(t, surface_point(body, g));
-    } else if (i % 3 == 1) {
-      x = m.place(t, 0.5 * (surface_point(body, g) + surface_point(body, g)));
-    } else if (body.kind == sweep::Body::Kind::sphere) {
-      const V3 d = m.point_velocity(t, V3::Zero()).normalized();
-      V3 n = d.cross(V3(u(g) - 0.5, u(g) - 0.5, u(g) - 0.5)).normalized();
-      x = m.place(t, V3::Zero()) + body.r * n;
-    } else {
-      x = m.place(t, surface_point(body, g));
-    }
-    outside += side(K::Point_3(x.x(), x.y(), x.z())) == CGAL::ON_UNBOUNDED_SIDE;
-  }
+  const int outside = points_outside(m, body, cm, 31);
   EXPECT_EQ(outside, 0);
 
-  // Tightness: each vertex's distance to the swept volume, by the body's signed distance
-  // at 400 times and golden sections about the best, is within T (an upper bound of it).
+  // Tightness: each vertex's distance to the swept volume is within T.
   double worst = 0;
-  for (std::size_t k = 0; k < v.vertices.size(); k += 7) {
-    const V3& x = v.vertices[k];
-    auto dist = [&](double t) {
-      const Eigen::Matrix4d f = m.frame(t);
-      return sweep::signed_distance(body,
-                                    f.block<3, 3>(1, 1).transpose() * (x - f.block<3, 1>(1, 0)));
-    };
-    const int n = 400;
-    int best = 0;
-    double fbest = HUGE_VAL;
-    for (int j = 0; j <= n; ++j) {
-      const double f = dist(m.a() + (m.b() - m.a()) * j / n);
-      if (f < fbest) fbest = f, best = j;
-    }
-    double lo = m.a() + (m.b() - m.a()) * std::max(0, best - 1) / n;
-    double hi = m.a() + (m.b() - m.a()) * std::min(n, best + 1) / n;
-    for (int it = 0; it < 40; ++it) {
-      const double a = lo + (hi - lo) * 0.382, b = lo + (hi - lo) * 0.618;
-      const double fa = dist(a), fb = dist(b);
-      fbest = std::min({fbest, fa, fb});
-      (fa < fb ? hi : lo) = fa < fb ? b : a;
-    }
-    worst = std::max(worst, std::max(fbest, 0.0));
-  }
+  for (std::size_t k = 0; k < v.vertices.size(); k += 7)
+    worst = std::max(worst, searched_distance(m, body, v.vertices[k]));
   EXPECT_LE(worst, T);
   EXPECT_GT(worst, 0.3 * T);  // the vertices are not needlessly close either
 }
@@ -250,11 +271,7 @@ TEST(SweptVolumeMesh, BackThroughItselfStaysManifold) {
   const auto poses = io::parse_poses_json(text + "]}", "back_and_forth");
   const Motion m = interpolate(poses, {}).motion;
   const SweptVolume v = swept_volume(m, io::read_body("box:4,3,2"), 0.5);
-  expect_closed_oriented(v);
-  const CgalMesh cm = to_cgal(v);
-  EXPECT_TRUE(CGAL::is_closed(cm));
-  EXPECT_FALSE(PMP::does_self_intersect(cm));
-  EXPECT_TRUE(PMP::is_outward_oriented(cm));
+  expect_valid_mesh(v, to_cgal(v));
   EXPECT_LE(v.distance_bound, 0.5);
 }
 
@@ -284,6 +301,72 @@ TEST(BodySignedDistance, AgreesWithTheBodies) {
   const sweep::Body bull = io::read_body("cutter:bull,6,1,20");
   EXPECT_NEAR(sweep::signed_distance(bull, V3(2 + 2 * std::sqrt(0.5), 0, 1 - 2 * std::sqrt(0.5))),
               1, 1e-14);  // off the corner, along its normal
+}
+
+/// A binary STL as a reader sees it: float32 corners, welded by their coordinates.
+SweptVolume read_binary_stl(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::uint32_t n = 0;
+  std::memcpy(&n, bytes.data() + 80, 4);
+  EXPECT_EQ(bytes.size(), 84 + 50 * std::size_t(n));
+  SweptVolume v;
+  std::map<std::array<float, 3>, int> index;
+  for (std::uint32_t t = 0; t < n; ++t) {
+    std::array<int, 3> tri{};
+    for (int c = 0; c < 3; ++c) {
+      std::array<float, 3> p{};
+      std::memcpy(p.data(), bytes.data() + 84 + 50 * std::size_t(t) + 12 + 12 * c, 12);
+      const auto [it, fresh] = index.try_emplace(p, static_cast<int>(v.vertices.size()));
+      if (fresh) v.vertices.emplace_back(p[0], p[1], p[2]);
+      tri[static_cast<std::size_t>(c)] = it->second;
+    }
+    v.triangles.push_back(tri);
+  }
+  return v;
+}
+
+/// What is written is what was certified: a helix 3 m from the origin, where float32
+/// rounds a vertex by up to 3.2e-4 mm, written as binary STL. Read back as a reader
+/// sees it, the file is a closed, outward 2-manifold without self-intersections, it holds
+/// 20 000 points of the swept volume, and each of its vertices lies within the reported
+/// distance bound of it (the test's own search on t).
+TEST(SweptVolumeWritten, BinaryStlIsTheCertifiedMesh) {
+  auto poses = io::read_poses(test_data("helix_10.json"));
+  poses.poses.resize(5);
+  const double shift[3] = {3000, -2000, 1000};
+  for (auto& p : poses.poses)
+    for (int k = 0; k < 3; ++k)
+      p.position[k] = io::Number::from_double(p.position[k].value + shift[k]);
+  const Motion m = interpolate(poses, {}).motion;
+  const auto path = test::scratch_path("volume_written", "helix.stl").string();
+  VolumeOptions o;
+  o.output = path;
+  o.body = "cutter:ball,6,20";
+  o.tol = 0.5;
+  const VolumeReport r = volume(m, o);
+  const auto report = r.report();
+  EXPECT_TRUE(report["closed"].get<bool>());
+  const double e = report["float32_rounding"].get<double>();
+  EXPECT_GT(e, 2e-4);  // sqrt(3) 2^-24 |x|, |x| about 3060 mm: 3.2e-4 mm
+  EXPECT_LT(e, 4e-4);
+  const double bound = report["distance_bound"].get<double>();
+  EXPECT_LE(bound, 0.5);
+
+  const SweptVolume v = read_binary_stl(path);
+  EXPECT_EQ(v.vertices.size(), r.vertices);  // no two vertices rounded to one point
+  const CgalMesh cm = to_cgal(v);
+  expect_valid_mesh(v, cm);
+
+  const sweep::Body body = io::read_body(o.body);
+  const int outside = points_outside(m, body, cm, 7);
+  EXPECT_EQ(outside, 0);
+  double worst = 0;
+  for (std::size_t k = 0; k < v.vertices.size(); k += 7)
+    worst = std::max(worst, searched_distance(m, body, v.vertices[k]));
+  EXPECT_LE(worst, bound);
+  std::cout << "float32 rounding " << e << " mm, bound " << bound << ", worst sampled " << worst
+            << "\n";
 }
 
 /// A rational motion with a pole on its interval cannot sweep a bounded volume.

@@ -19,7 +19,9 @@ Usage: run_freecad.py QMOTION DATA WORK_DIR   (DATA: the repository's tests/data
    (fitted: FreeCAD's rule along U is sized from V; shown on a pipe FreeCAD makes itself).
 3. The exact swept volume of sphere:3 on the 8-pose helix (`volume` to STEP): one valid
    closed solid that offsets, thickens, cuts and fuses with a box, whose FreeCAD volume
-   matches qmotion's within 1e-4 and lies in the certified bounds.
+   matches qmotion's within 1e-4 and lies in the certified bounds. The same for a tilting
+   ball cutter on the 4-pose helix, whose STEP holds faces of degree 9 within a proven bound
+   of the exact pipe (whose degree is above STEP's).
 Exit 0 pass, 1 fail (a missing freecadcmd fails: QMOTION_FREECADCMD names another), 77
 skip (QMOTION_REAL_CLIENTS=OFF in the environment).
 """
@@ -195,20 +197,36 @@ def operation_cases(qmotion, data, work):
             if not (rel <= 1e-6 and occt["closed"] and occt["solids"] == 1 and occt["valid"]):
                 raise SystemExit("FAIL: %s: OpenCASCADE's solid %r" % (name, occt))
         out.append(case)
+    def helix_motion(poses):
+        doc = json.load(open(os.path.join(data, "poses", "helix_40.json")))
+        doc["poses"] = doc["poses"][:poses]
+        path = os.path.join(work, "helix_%d.json" % poses)
+        json.dump(doc, open(path, "w"))
+        motion = os.path.join(work, "motion_helix%d.json" % poses)
+        run("interpolate", path, "-o", motion)
+        return motion
+
     # The exact swept volume of a sphere on the 8-pose helix (`volume` to STEP): the pipe and
     # its half-sphere caps, one solid; its volume within the certified bounds.
-    doc = json.load(open(os.path.join(data, "poses", "helix_40.json")))
-    doc["poses"] = doc["poses"][:8]
-    poses8 = os.path.join(work, "helix_8.json")
-    json.dump(doc, open(poses8, "w"))
-    motion8 = os.path.join(work, "motion_helix8.json")
-    run("interpolate", poses8, "-o", motion8)
+    motion8 = helix_motion(8)
     step = os.path.join(work, "sphere_pipe_solid.step")
     report = json.loads(run("volume", motion8, "--body", "sphere:3", "-o", step, "--tol", "0.4").stdout)
     print("sphere_pipe_solid: qmotion volume %.12g, certified bounds %r, degree %d, %d faces"
           % (report["volume"], report["volume_bounds"], report["degree"], report["faces"]))
     out.append({"name": "sphere_pipe_solid", "file": step, "expect": ["closed", "thicken", "cut", "fuse"],
                 "solid": True, "volume": report["volume"], "volume_bounds": report["volume_bounds"]})
+    # A tilting ball cutter on the 4-pose helix: its exact pipe has a degree above STEP's, so
+    # the file holds faces of degree 9 within a proven bound of it; one solid all the same.
+    motion4 = helix_motion(4)
+    step = os.path.join(work, "ball_pipe_solid.step")
+    report = json.loads(run("volume", motion4, "--body", "cutter:ball,6,20", "-o", step).stdout)
+    approx = report["approximation"]
+    print("ball_pipe_solid: qmotion volume %.12g, degree %d (exact %d), proven within %.3g, %d faces"
+          % (report["volume"], approx["degree"], approx["exact_degree"], approx["bound"], report["faces"]))
+    if approx["degree"] > 9 or not approx["bound"] > 0:
+        raise SystemExit("FAIL: ball_pipe_solid: %r" % approx)
+    out.append({"name": "ball_pipe_solid", "file": step, "expect": ["closed", "thicken", "cut", "fuse"],
+                "solid": True, "volume": report["volume"]})
     return out
 
 

@@ -4,9 +4,11 @@
 // the volume of the tube formula pi r^2 L + 4/3 pi r^3 (L by Simpson's rule).
 #include <gtest/gtest.h>
 
+#include <iostream>
 #include <map>
 #include <qmotion/kernel/error.hpp>
 #include <qmotion/sweep/pipe.hpp>
+#include <qmotion/sweep/pipe_approx.hpp>
 #include <random>
 
 namespace qmotion {
@@ -208,6 +210,41 @@ TEST(PipeRefusals, CornerRadiusAndCusp) {
   const auto p = sweep::pipe_shell(line, 2, "line");
   EXPECT_EQ(p.pipe_faces, 4u);
   EXPECT_NEAR(p.volume, M_PI * 4 * 10 + 4.0 / 3 * M_PI * 8, 1e-10 * p.volume);
+}
+
+/// A pipe of degree 27 (a rational path of degree 5) brought to degree 9 (pipe_approx.hpp):
+/// every sampled point of every fitted face, by the test's own Bernstein sums, lies within
+/// the proven bound of distance r from the path; the end circles are kept, so the volume
+/// stays the exact shell's.
+TEST(PipeToDegree, WithinItsProvenBound) {
+  for (unsigned seed : {3u, 8u}) {
+    const Path c = random_path(seed, 5, 7, 0.3);
+    const double r = 1.5;
+    const auto exact = sweep::pipe_shell(c, r, "path");
+    ASSERT_GT(exact.degree_t, 20);
+    const double target = 1e-6 * sweep::diagonal(exact.shell);
+    const auto low = sweep::pipe_to_degree(exact, 9, target, "path");
+    EXPECT_EQ(low.degree, 9);
+    EXPECT_GT(low.bound, 0);
+    EXPECT_LE(low.bound, target);
+    EXPECT_EQ(low.shell.faces.size() - low.pipe_faces, exact.shell.faces.size() - exact.pipe_faces);
+    double worst = 0;
+    for (std::size_t k = 0; k < low.pipe_faces; ++k) {
+      const auto& f = low.shell.faces[k];
+      ASSERT_LE(f.degree_u, 9);
+      for (int i = 0; i <= 6; ++i)
+        for (int j = 0; j <= 4; ++j) {
+          const double t = f.knots_u.front() + (f.knots_u.back() - f.knots_u.front()) * i / 6;
+          const Eigen::Vector3d x = at(f, i / 6.0, j / 4.0);
+          worst = std::max(worst, std::abs(distance_to_path(c, x, t, 0.5) - r));
+        }
+    }
+    std::cout << "seed " << seed << ": degree " << exact.degree_t << " -> 9, " << low.pipe_faces
+              << " faces (from " << exact.pipe_faces << "), proven " << low.bound << ", sampled "
+              << worst << "\n";
+    EXPECT_LE(worst, low.bound + 1e-10 * r);
+    EXPECT_NEAR(low.volume, exact.volume, 1e-7 * exact.volume);
+  }
 }
 
 }  // namespace pipe_tests

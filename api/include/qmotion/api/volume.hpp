@@ -36,14 +36,31 @@ struct SweptVolume {
   double piece_delta = 0;       ///< their largest certified radius of motion
   std::size_t distance_queries = 0;
   int rounds = 0;  ///< lattices tried until every vertex was within the tolerance
+  /// VolumeRounding::float32: the largest distance a vertex may move when its coordinates
+  /// are rounded to float32; the mesh encloses V grown by it, and the vertices (and so
+  /// distance_bound) are the rounded ones. 0 when the vertices are written as doubles.
+  double rounding = 0;
+  /// Measured on the vertices as written (welded by their written coordinates, as a reader
+  /// of an STL file welds them): every directed edge once, and its reverse once.
+  bool closed = false;
+};
+
+/// How the mesh's vertices will be written, so that what is certified is what is written
+/// (docs/guide/volume.md, "What is written is what was certified").
+struct VolumeRounding {
+  bool float32 = false;  ///< coordinates rounded to float32 (binary STL)
+  double scale = 1;      ///< output unit per motion unit: the file holds float32(scale * x)
 };
 
 /// The swept volume of body under the motion (either kind), every vertex within tol (motion
 /// unit; unset: 1e-3 of the bounding-box diagonal of V, sampled). Errc::invalid_input for a
 /// bad body or tolerance; Errc::numerical_failure for a rational motion with a pole on its
-/// interval, or a tolerance too fine for the memory.
+/// interval, or a tolerance too fine for the memory. With rounding.float32, the vertices are
+/// float32(scale * x) / scale, certified as they are; Errc::invalid_input when float32 is too
+/// coarse for the tolerance at the volume's coordinates.
 SweptVolume swept_volume(const Motion& motion, const sweep::Body& body,
-                         std::optional<double> tol = std::nullopt);
+                         std::optional<double> tol = std::nullopt,
+                         const VolumeRounding& rounding = {});
 
 /// The exact faces of the volume a sphere sweeps: for `sphere:r` the body itself, for
 /// `cutter:ball,D,L` its ball (centre (0, 0, D/2) of the moving frame, radius D/2; the shank
@@ -82,6 +99,15 @@ struct VolumeReport {
   int degree = 0;
   double radius = 0, orthogonality = 0, radius_deviation = 0, exact_volume = 0;
   std::string exact_part;  ///< "the sphere", or the ball of a ball cutter (its shank left out)
+  /// The proof that the pipe does not overlap itself (sweep::pipe_overlap_free): a lower
+  /// bound of the path's least radius of curvature, and the pieces and pairs it took.
+  double curvature_radius = 0;
+  std::size_t reach_pieces = 0, reach_pairs = 0;
+  /// STEP/IGES of a pipe above the degree they store (a tilting ball cutter's): faces of
+  /// degree 9 within approximation_bound (proven) of the exact ones of exact_degree.
+  bool approximated = false;
+  double approximation_bound = 0;
+  int exact_degree = 0;
   bool has_bounds = true;
   bool closed = false;
   double seconds = 0;

@@ -31,6 +31,12 @@ struct PipeShell {
   double orthogonality = 0;     ///< largest |(n . c')| / |c'| at the sampled points: rounding
   double radius_deviation = 0;  ///< largest ||X - c(t)| - r| / r at the sampled face points
   double volume = 0;            ///< enclosed, by Gauss-Legendre on every face (measured)
+  /// Set by pipe_overlap_free (pipe_reach.hpp): the proof that the pipe does not overlap
+  /// itself. pieces == 0: not proven.
+  struct Reach {
+    std::size_t pieces = 0, pairs = 0;
+    double curvature_radius = 0, sampled_min_radius = 0;
+  } reach;
 };
 
 namespace pipe_detail {
