@@ -247,6 +247,7 @@ Body mesh_body(const std::string& path) {
            : e == ".obj" ? read_obj(path, text)
                          : read_ply(path, text);
   require_closed_oriented(b.mesh, path);
+  sweep::index_mesh(b);  // closed and oriented: the pseudonormals' sign holds
   return b;
 }
 

@@ -143,8 +143,26 @@ double searched_distance(const Motion& m, const sweep::Body& body, const V3& x) 
 /// normal to c'(t).
 int points_outside(const Motion& m, const sweep::Body& body, const CgalMesh& cm, unsigned seed) {
   const CGAL::Side_of_triangle_mesh<CgalMesh, K> side(cm);
+  // A mesh body need not be convex: its inner points are the midpoints that CGAL finds
+  // inside its own mesh.
+  CgalMesh own;
+  if (body.kind == sweep::Body::Kind::mesh) {
+    SweptVolume b;
+    b.vertices = body.mesh.vertices;
+    b.triangles = body.mesh.triangles;
+    own = to_cgal(b);
+  }
   std::mt19937 g(seed);
   std::uniform_real_distribution<double> u(0, 1);
+  auto inner = [&]() {
+    for (;;) {
+      const V3 x = 0.5 * (surface_point(body, g) + surface_point(body, g));
+      if (body.kind != sweep::Body::Kind::mesh ||
+          CGAL::Side_of_triangle_mesh<CgalMesh, K>(own)(K::Point_3(x.x(), x.y(), x.z())) ==
+              CGAL::ON_BOUNDED_SIDE)
+        return x;
+    }
+  };
   int outside = 0;
   for (int i = 0; i < 20000; ++i) {
     const double t = m.a() + (m.b() - m.a()) * u(g);
@@ -152,7 +170,7 @@ int points_outside(const Motion& m, const sweep::Body& body, const CgalMesh& cm,
     if (i % 3 == 0) {
       x = m.place(t, surface_point(body, g));
     } else if (i % 3 == 1) {
-      x = m.place(t, 0.5 * (surface_point(body, g) + surface_point(body, g)));
+      x = m.place(t, inner());
     } else if (body.kind == sweep::Body::Kind::sphere) {
       const V3 d = m.point_velocity(t, V3::Zero()).normalized();
       V3 n = d.cross(V3(u(g) - 0.5, u(g) - 0.5, u(g) - 0.5)).normalized();
@@ -218,7 +236,8 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"box:4,6,8", false}, Case{"cylinder:2,10", true},
                       Case{"cutter:flat,6,20", false}, Case{"cutter:ball,6,20", true},
                       Case{"cutter:ball,6,20", false}, Case{"cutter:bull,6,1,20", true},
-                      Case{"@bodies/tetra.obj", true}, Case{"@bodies/tetra.obj", false}),
+                      Case{"@bodies/tetra.obj", true}, Case{"@bodies/tetra.obj", false},
+                      Case{"@bodies/bracket.obj", true}, Case{"@bodies/bracket.obj", false}),
     [](const ::testing::TestParamInfo<Case>& info) {
       // "cutter:ball,6,20" on a rational motion -> "cutter_ball_6_20_rational"
       std::string name = info.param.body[0] == '@' ? info.param.body + 8 : info.param.body;

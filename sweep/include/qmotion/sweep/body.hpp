@@ -7,7 +7,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 #include <qmotion/kernel/error.hpp>
+#include <qmotion/sweep/mesh_distance.hpp>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -25,12 +27,6 @@ inline std::string size_text(double v) {
 
 }  // namespace detail
 
-/// A closed triangle mesh: counter-clockwise seen from outside.
-struct TriangleMesh {
-  std::vector<Eigen::Vector3d> vertices;
-  std::vector<std::array<int, 3>> triangles;
-};
-
 /// A body of the moving space. Sizes are in the motion's length unit.
 struct Body {
   enum class Kind { sphere, box, cylinder, flat_cutter, ball_cutter, bull_cutter, mesh };
@@ -40,7 +36,10 @@ struct Body {
   double h = 0;                 ///< cylinder height (moving z from 0 to h)
   double D = 0, L = 0, rc = 0;  ///< cutters: diameter, length, corner radius (bull)
   TriangleMesh mesh;            ///< Kind::mesh, in the moving space
-  std::string spec;             ///< as given, for messages and reports
+  /// Kind::mesh: its distance index (index_mesh), shared by the body's copies; without it
+  /// the signed distance scans every triangle.
+  std::shared_ptr<const detail::MeshIndex> index;
+  std::string spec;  ///< as given, for messages and reports
 
   static Body box(double a, double b, double c, std::string spec = {}) {
     Body x;
@@ -297,48 +296,6 @@ inline double revolved_distance(double rho, double z, double R, double rc, doubl
   return with(-depth, dr, dz);
 }
 
-/// The closest point to x on the triangle (a, b, c) (Ericson, Real-Time Collision
-/// Detection, 5.1.5).
-inline Eigen::Vector3d closest_on_triangle(const Eigen::Vector3d& x, const Eigen::Vector3d& a,
-                                           const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
-  const Eigen::Vector3d ab = b - a, ac = c - a, ax = x - a;
-  const double d1 = ab.dot(ax), d2 = ac.dot(ax);
-  if (d1 <= 0 && d2 <= 0) return a;
-  const Eigen::Vector3d bx = x - b;
-  const double d3 = ab.dot(bx), d4 = ac.dot(bx);
-  if (d3 >= 0 && d4 <= d3) return b;
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + d1 / (d1 - d3) * ab;
-  const Eigen::Vector3d cx = x - c;
-  const double d5 = ab.dot(cx), d6 = ac.dot(cx);
-  if (d6 >= 0 && d5 <= d6) return c;
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + d2 / (d2 - d6) * ac;
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
-    return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
-  const double den = 1 / (va + vb + vc);
-  return a + ab * (vb * den) + ac * (vc * den);
-}
-
-/// The signed distance from x to a closed, outward-oriented triangle mesh: the distance to
-/// its nearest triangle, negative where the winding number (the solid angles' sum over 4 pi,
-/// Van Oosterom and Strackee) is above one half.
-inline double mesh_distance(const TriangleMesh& m, const Eigen::Vector3d& x) {
-  double d2 = HUGE_VAL, omega = 0;
-  for (const auto& t : m.triangles) {
-    const Eigen::Vector3d &a = m.vertices[t[0]], &b = m.vertices[t[1]], &c = m.vertices[t[2]];
-    d2 = std::min(d2, (closest_on_triangle(x, a, b, c) - x).squaredNorm());
-    const Eigen::Vector3d p = a - x, q = b - x, r = c - x;
-    const double lp = p.norm(), lq = q.norm(), lr = r.norm();
-    const double num = p.dot(q.cross(r));
-    const double den = lp * lq * lr + p.dot(q) * lr + q.dot(r) * lp + r.dot(p) * lq;
-    omega += 2 * std::atan2(num, den);
-  }
-  const double d = std::sqrt(d2);
-  return omega > 2 * 3.14159265358979323846 ? -d : d;
-}
-
 }  // namespace detail
 
 /// The signed distance from the point x of the moving space to the body: negative inside,
@@ -367,9 +324,14 @@ inline double signed_distance(const Body& body, const Eigen::Vector3d& x) {
                                        body.L);
     }
     case K::mesh:
-      return detail::mesh_distance(body.mesh, x);
+      return body.index ? body.index->signed_distance(x) : detail::mesh_distance(body.mesh, x);
   }
   return HUGE_VAL;
+}
+
+/// Gives a mesh body its distance index (a closed, consistently oriented mesh: validate()).
+inline void index_mesh(Body& body) {
+  if (body.kind == Body::Kind::mesh) body.index = std::make_shared<detail::MeshIndex>(body.mesh);
 }
 
 /// Whether the body is convex: every kind but the mesh (which may be, but is not assumed).
@@ -425,7 +387,7 @@ inline double signed_distance(const Body& body, const Eigen::Vector3d& x, Eigen:
       return v;
     }
     case K::mesh:
-      return detail::mesh_distance(body.mesh, x);
+      return signed_distance(body, x);
   }
   return HUGE_VAL;
 }

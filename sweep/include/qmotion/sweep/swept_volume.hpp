@@ -29,6 +29,49 @@ struct VolumeDistance {
   int node = -1;          ///< the tree's node whose placement gave signed_upper
 };
 
+/// A convex lower bound of a closed mesh body's signed distance, for the plane bounds of the
+/// tree's leaves: the polytope P = { x : n_i . x <= b_i } about the mesh (n_i the 26
+/// directions to the faces, edges and corners of a cube, b_i the mesh's largest n_i . v,
+/// raised by 1e-12 of its radius for rounding). L(x) = max_i (n_i . x - b_i) is convex, with
+/// the maximising n_i as a subgradient, and L <= sd_P <= sd_body: outside P every point p of P
+/// has |x - p| >= n_i . (x - p) >= n_i . x - b_i; inside, L is minus the distance to P's
+/// nearest face plane; and P holds the body, so sd_P <= sd_body everywhere.
+class Dop {
+ public:
+  Dop() = default;
+  explicit Dop(const TriangleMesh& m) {
+    double rho = 0;
+    for (const auto& v : m.vertices) rho = std::max(rho, v.norm());
+    auto add = [&](const Eigen::Vector3d& n) {
+      double most = -HUGE_VAL;
+      for (const auto& v : m.vertices) most = std::max(most, n.dot(v));
+      n_.push_back(n);
+      b_.push_back(most + 1e-12 * rho);
+    };
+    for (int a = -1; a <= 1; ++a)
+      for (int b = -1; b <= 1; ++b)
+        for (int c = -1; c <= 1; ++c)
+          if (a != 0 || b != 0 || c != 0) add(Eigen::Vector3d(a, b, c).normalized());
+  }
+  /// L(x), and g its subgradient there.
+  double lower(const Eigen::Vector3d& x, Eigen::Vector3d& g) const {
+    g.setZero();
+    double best = -HUGE_VAL;
+    for (std::size_t i = 0; i < n_.size(); ++i) {
+      const double v = n_[i].dot(x) - b_[i];
+      if (v > best) {
+        best = v;
+        g = n_[i];
+      }
+    }
+    return best;
+  }
+
+ private:
+  std::vector<Eigen::Vector3d> n_;
+  std::vector<double> b_;
+};
+
 /// A binary tree over the motion's parameter: every node is an interval [t0, t1] of one
 /// segment, with the body placed at its middle, M(tm) K, and a radius Delta such that every
 /// point of the body stays within Delta of where M(tm) puts it over the interval:
@@ -62,6 +105,7 @@ class SweptVolumeTree {
         rho_(radius(body)),
         bound_(m, radius(body), 4),
         leaf_(leaf_delta) {
+    if (!convex_) dop_ = Dop(body.mesh);
     ball_centre_ = ball_centre(body);
     ball_radius_ = 0;
     for (const auto& v : triangulate(body, 1e-3 * rho_).vertices)
@@ -172,8 +216,9 @@ class SweptVolumeTree {
     int best_node = -1;
     std::vector<int> node;
     std::vector<double> bound;  ///< the leaf's bound at c less r: a lower bound for every x
-    /// A convex body's plane bound: base + g . x <= sd_K(M(tm)^-1 x) - Delta for every x, with
-    /// g the subgradient of the signed distance at c (see signed_distance with g).
+    /// The leaf's plane bound: base + g . x <= sd_K(M(tm)^-1 x) - Delta for every x, with g
+    /// the subgradient at c of the signed distance (a convex body: see signed_distance with
+    /// g) or of its polytope bound (a mesh: Dop).
     std::vector<double> base, gx, gy, gz;
     void clear() {
       node.clear();
@@ -189,15 +234,16 @@ class SweptVolumeTree {
   /// batch of queries about c. A node whose bound at c, lb, is at least best + 2 r (best: the
   /// smallest signed distance from c to a placement seen) is left out: for x within r of c
   /// its bound is at least lb - r >= best + r, and best + r bounds x's distance from above.
-  /// For a convex body, each leaf also gets the plane through its signed distance at c along
-  /// a subgradient there: a lower bound of the signed distance everywhere, exact to first
-  /// order about c.
+  /// Each leaf also gets a plane: for a convex body through its signed distance at c along a
+  /// subgradient there, a lower bound of the signed distance everywhere, exact to first order
+  /// about c; for a mesh the same of its polytope bound (Dop), exact to first order where the
+  /// mesh's nearest point lies on that polytope's boundary.
   void candidates(const Eigen::Vector3d& c, double r, Candidates& out) const {
     out.clear();
     thread_local std::vector<std::pair<int, double>> stack;  // node, its bound at c
     struct Found {
       int node;
-      double lb, sd;
+      double lb, pv;  // the leaf's bound at c; its plane's value at c
       Eigen::Vector3d g;
     };
     thread_local std::vector<Found> found;
@@ -220,8 +266,12 @@ class SweptVolumeTree {
       }
       const bool leaf = n.child[0] < 0;
       Eigen::Vector3d g = Eigen::Vector3d::Zero();
-      const double sd = leaf && convex_ ? signed_distance(body_, n.Rt * (c - n.p), g)
-                                        : signed_distance(body_, n.Rt * (c - n.p));
+      const Eigen::Vector3d local = n.Rt * (c - n.p);
+      const double sd =
+          leaf && convex_ ? signed_distance(body_, local, g) : signed_distance(body_, local);
+      // The plane's value at c: the signed distance itself for a convex body, else the
+      // polytope bound (Dop), whose subgradient is g.
+      const double pv = leaf && !convex_ ? dop_.lower(local, g) : sd;
       best = std::min(best, sd);
       const double lb = std::max(ball, sd - n.delta);
       if (lb >= best + 2 * r) {
@@ -229,7 +279,7 @@ class SweptVolumeTree {
         continue;
       }
       if (leaf) {
-        found.push_back({i, lb, sd, n.Rt.transpose() * g});
+        found.push_back({i, lb, pv, n.Rt.transpose() * g});
         continue;
       }
       const Node &c0 = nodes_[static_cast<std::size_t>(n.child[0])],
@@ -246,16 +296,14 @@ class SweptVolumeTree {
       }
       out.node.push_back(f.node);
       out.bound.push_back(f.lb - r);
-      if (convex_) {
-        // Rounding: the plane is lowered by 1e-12 of the sizes it sums.
-        const double delta = nodes_[static_cast<std::size_t>(f.node)].delta;
-        const double gc = f.g.dot(c);
-        out.base.push_back(f.sd - delta - gc -
-                           1e-12 * (std::abs(f.sd) + std::abs(gc) + delta + r + rho_));
-        out.gx.push_back(f.g.x());
-        out.gy.push_back(f.g.y());
-        out.gz.push_back(f.g.z());
-      }
+      // Rounding: the plane is lowered by 1e-12 of the sizes it sums.
+      const double delta = nodes_[static_cast<std::size_t>(f.node)].delta;
+      const double gc = f.g.dot(c);
+      out.base.push_back(f.pv - delta - gc -
+                         1e-12 * (std::abs(f.pv) + std::abs(gc) + delta + r + rho_));
+      out.gx.push_back(f.g.x());
+      out.gy.push_back(f.g.y());
+      out.gz.push_back(f.g.z());
     }
     out.rest = left_out - r;
   }
@@ -286,18 +334,16 @@ class SweptVolumeTree {
       }
       out.node.push_back(wide.node[k]);
       out.bound.push_back(lb[k]);
-      if (convex_) {
-        out.base.push_back(wide.base[k]);
-        out.gx.push_back(wide.gx[k]);
-        out.gy.push_back(wide.gy[k]);
-        out.gz.push_back(wide.gz[k]);
-      }
+      out.base.push_back(wide.base[k]);
+      out.gx.push_back(wide.gx[k]);
+      out.gy.push_back(wide.gy[k]);
+      out.gz.push_back(wide.gz[k]);
     }
   }
 
   /// What query(x) learns from the candidates of a batch about c (candidates(c, r, ...)), for
   /// x within r of c. Every leaf has a lower bound at x without placing the body (its bound
-  /// at c less r, and for a convex body its plane); the leaf with the least is placed first,
+  /// at c less r, and its plane); the leaf with the least is placed first,
   /// then every other whose bound is below what is known less `slack` (so that lower is at
   /// most slack below what placing them all would give). It stops when a placement holds x
   /// deeper than stop_depth.
@@ -339,7 +385,7 @@ class SweptVolumeTree {
 
  private:
   /// Every candidate's lower bound for the points within `reach` of x: the larger of its
-  /// bound and, for a convex body, its plane at x less reach (a plane's slope |g| is at most
+  /// bound and its plane at x less reach (a plane's slope |g| is at most
   /// one). The loop runs over plain arrays, so that it vectorises. Returns the index of the
   /// least (the candidates' number when there are none).
   std::size_t bounds_at(const Candidates& cands, const Eigen::Vector3d& x, double reach,
@@ -349,14 +395,10 @@ class SweptVolumeTree {
     double* const l = out.data();
     const double *bound = cands.bound.data(), *base = cands.base.data(), *gx = cands.gx.data(),
                  *gy = cands.gy.data(), *gz = cands.gz.data();
-    if (convex_) {
-      const double x0 = x.x(), x1 = x.y(), x2 = x.z();
-      for (std::size_t k = 0; k < n; ++k) {
-        const double p = base[k] + gx[k] * x0 + gy[k] * x1 + gz[k] * x2 - reach;
-        l[k] = bound[k] > p ? bound[k] : p;
-      }
-    } else {
-      std::copy(bound, bound + n, l);
+    const double x0 = x.x(), x1 = x.y(), x2 = x.z();
+    for (std::size_t k = 0; k < n; ++k) {
+      const double p = base[k] + gx[k] * x0 + gy[k] * x1 + gz[k] * x2 - reach;
+      l[k] = bound[k] > p ? bound[k] : p;
     }
     std::size_t first = n;
     double least = HUGE_VAL;
@@ -432,6 +474,7 @@ class SweptVolumeTree {
   const qmotion::Motion& motion_;
   const Body& body_;
   bool convex_;
+  Dop dop_;  ///< a non-convex body's polytope bound
   double rho_;
   KeyframeBound bound_;
   double leaf_;
