@@ -157,10 +157,7 @@ void write_exact(const Motion& motion, const sweep::Body& body, const VolumeOpti
     r.approximated = true;
     r.approximation_bound = f * low.bound;
     r.exact_degree = pipe.degree_t;
-    pipe.shell = std::move(low.shell);
-    pipe.pipe_faces = low.pipe_faces;
-    pipe.degree_t = low.degree;
-    pipe.volume = low.volume;
+    pipe = std::move(low.pipe);
   }
   for (auto& face : pipe.shell.faces)
     for (auto& row : face.points)

@@ -224,13 +224,14 @@ TEST(PipeToDegree, WithinItsProvenBound) {
     ASSERT_GT(exact.degree_t, 20);
     const double target = 1e-6 * sweep::diagonal(exact.shell);
     const auto low = sweep::pipe_to_degree(exact, 9, target, "path");
-    EXPECT_EQ(low.degree, 9);
+    EXPECT_EQ(low.pipe.degree_t, 9);
     EXPECT_GT(low.bound, 0);
     EXPECT_LE(low.bound, target);
-    EXPECT_EQ(low.shell.faces.size() - low.pipe_faces, exact.shell.faces.size() - exact.pipe_faces);
+    EXPECT_EQ(low.pipe.shell.faces.size() - low.pipe.pipe_faces,
+              exact.shell.faces.size() - exact.pipe_faces);
     double worst = 0;
-    for (std::size_t k = 0; k < low.pipe_faces; ++k) {
-      const auto& f = low.shell.faces[k];
+    for (std::size_t k = 0; k < low.pipe.pipe_faces; ++k) {
+      const auto& f = low.pipe.shell.faces[k];
       ASSERT_LE(f.degree_u, 9);
       for (int i = 0; i <= 6; ++i)
         for (int j = 0; j <= 4; ++j) {
@@ -239,11 +240,11 @@ TEST(PipeToDegree, WithinItsProvenBound) {
           worst = std::max(worst, std::abs(distance_to_path(c, x, t, 0.5) - r));
         }
     }
-    std::cout << "seed " << seed << ": degree " << exact.degree_t << " -> 9, " << low.pipe_faces
-              << " faces (from " << exact.pipe_faces << "), proven " << low.bound << ", sampled "
-              << worst << "\n";
+    std::cout << "seed " << seed << ": degree " << exact.degree_t << " -> 9, "
+              << low.pipe.pipe_faces << " faces (from " << exact.pipe_faces << "), proven "
+              << low.bound << ", sampled " << worst << "\n";
     EXPECT_LE(worst, low.bound + 1e-10 * r);
-    EXPECT_NEAR(low.volume, exact.volume, 1e-7 * exact.volume);
+    EXPECT_NEAR(low.pipe.volume, exact.volume, 1e-7 * exact.volume);
   }
 }
 

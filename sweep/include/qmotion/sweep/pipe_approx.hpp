@@ -21,20 +21,17 @@
 #include <qmotion/kernel/error.hpp>
 #include <qmotion/kernel/interpolation.hpp>
 #include <qmotion/sweep/pipe.hpp>
-#include <qmotion/sweep/solid.hpp>
 #include <string>
 #include <vector>
 
 namespace qmotion::sweep {
 
-/// What pipe_to_degree made: the shell (pipe faces of degree at most `degree` along t, the
-/// caps as they were), its proven distance from the exact pipe, and its volume.
+/// What pipe_to_degree made: the pipe (its pipe faces of degree at most `degree` along t,
+/// the caps as they were, degree_t and volume those of the new faces, the rest the exact
+/// pipe's), and its proven distance from the exact pipe.
 struct LowDegreePipe {
-  NurbsShell<double> shell;
-  std::size_t pipe_faces = 0;
-  int degree = 0;     ///< the highest degree of the faces along t
-  double bound = 0;   ///< proven: every point of a face within bound of the exact face
-  double volume = 0;  ///< enclosed, by Gauss-Legendre on every face (measured)
+  PipeShell pipe;
+  double bound = 0;  ///< proven: every point of a face within bound of the exact face
   std::size_t halvings = 0;
 };
 
@@ -172,6 +169,9 @@ inline LowDegreePipe pipe_to_degree(const PipeShell& exact, int degree, double t
                                     const std::string& where) {
   using namespace approx_detail;
   LowDegreePipe out;
+  out.pipe = exact;
+  NurbsShell<double>& shell = out.pipe.shell;
+  shell.faces.clear();
   Eigen::AlignedBox3d box;
   for (const auto& f : exact.shell.faces)
     for (const auto& row : f.points)
@@ -199,7 +199,7 @@ inline LowDegreePipe pipe_to_degree(const PipeShell& exact, int degree, double t
   for (std::size_t k = 0; k < exact.pipe_faces; ++k) {
     const auto& f = faces[k];
     if (f.degree_u <= degree) {
-      out.shell.faces.push_back(f);
+      shell.faces.push_back(f);
       continue;
     }
     Net rest = net_of(f, o);
@@ -232,7 +232,7 @@ inline LowDegreePipe pipe_to_degree(const PipeShell& exact, int degree, double t
     if (worst <= tol) {
       out.bound = std::max(out.bound, worst);
       for (std::size_t q = 0; q < low.size(); ++q)
-        out.shell.faces.push_back(face_of(low[q], o, p.u0, p.u1, faces[p.from[q]]));
+        shell.faces.push_back(face_of(low[q], o, p.u0, p.u1, faces[p.from[q]]));
       continue;
     }
     if (p.depth >= 16)
@@ -251,23 +251,18 @@ inline LowDegreePipe pipe_to_degree(const PipeShell& exact, int degree, double t
     todo.push_back(std::move(b));
     todo.push_back(std::move(a));
   }
-  out.pipe_faces = out.shell.faces.size();
-  for (std::size_t k = exact.pipe_faces; k < faces.size(); ++k) out.shell.faces.push_back(faces[k]);
-  out.shell.closed = exact.shell.closed;
-  for (const auto& f : out.shell.faces) out.degree = std::max(out.degree, f.degree_u);
+  out.pipe.pipe_faces = shell.faces.size();
+  for (std::size_t k = exact.pipe_faces; k < faces.size(); ++k) shell.faces.push_back(faces[k]);
+  out.pipe.degree_t = 0;
+  for (std::size_t k = 0; k < out.pipe.pipe_faces; ++k)
+    out.pipe.degree_t = std::max(out.pipe.degree_t, shell.faces[k].degree_u);
   // The enclosed volume, (1/3) sum of the integrals of (X - o) . dA (faces face outward).
-  const auto& rule = detail::gauss_legendre();
-  for (const auto& f : out.shell.faces) {
-    const double u0 = f.knots_u.front(), u1 = f.knots_u.back(), v0 = f.knots_v.front(),
-                 v1 = f.knots_v.back();
-    for (const auto& [x, wx] : rule)
-      for (const auto& [y, wy] : rule) {
-        Eigen::Vector3d X, Xu, Xv;
-        pipe_detail::face_derivs(f, 0.5 * (u0 + u1) + 0.5 * (u1 - u0) * x,
-                                 0.5 * (v0 + v1) + 0.5 * (v1 - v0) * y, X, Xu, Xv);
-        out.volume += wx * wy * 0.25 * (u1 - u0) * (v1 - v0) * (X - o).dot(Xu.cross(Xv)) / 3;
-      }
-  }
+  out.pipe.volume = 0;
+  for (const auto& f : shell.faces)
+    pipe_detail::gauss_points(f, [&](double, const Eigen::Vector3d& X, const Eigen::Vector3d& Xu,
+                                     const Eigen::Vector3d& Xv, double w) {
+      out.pipe.volume += w * (X - o).dot(Xu.cross(Xv)) / 3;
+    });
   return out;
 }
 

@@ -215,21 +215,26 @@ inline PipeReach pipe_overlap_free(const kernel::BSpline<Eigen::Vector4d>& centr
   auto angle = [](const Eigen::Vector3d& x, const Eigen::Vector3d& y) {
     return std::acos(std::clamp(x.dot(y), -1.0, 1.0));
   };
+  // The balls about two pieces' control points are more than 2 r apart.
+  auto apart = [&](const Arc& I, const Arc& J) {
+    return (I.centre - J.centre).norm() - I.radius - J.radius > two_r;
+  };
+  std::vector<std::pair<Arc, Arc>> pairs;
   for (std::size_t i = 0; i < n; ++i) {
     std::size_t j = i + 1;
     while (j < n && angle(arcs[i].axis, arcs[j].axis) + arcs[j].cone < M_PI / 4 - 1e-9) ++j;
     for (; j < n; ++j) {
-      if ((arcs[i].centre - arcs[j].centre).norm() - arcs[i].radius - arcs[j].radius > two_r) {
+      if (apart(arcs[i], arcs[j])) {  // most pairs: no copies of the pieces
         ++out.pairs;
         continue;
       }
-      std::vector<std::pair<Arc, Arc>> pairs{{arcs[i], arcs[j]}};
+      pairs.assign(1, {arcs[i], arcs[j]});
       int splits = 0;
       while (!pairs.empty()) {
         auto [I, J] = std::move(pairs.back());
         pairs.pop_back();
         ++out.pairs;
-        if ((I.centre - J.centre).norm() - I.radius - J.radius > two_r) continue;
+        if (apart(I, J)) continue;
         // Neighbours whose tangents are pairwise within 90 degrees: g1 > 0 (the chord is the
         // integral of tangents that each make an acute angle with c'(s1)).
         if (I.t1() == J.t0() && 2 * I.cone < M_PI / 2 - 1e-9 &&

@@ -42,16 +42,16 @@ class Dop {
   explicit Dop(const TriangleMesh& m) {
     double rho = 0;
     for (const auto& v : m.vertices) rho = std::max(rho, v.norm());
-    auto add = [&](const Eigen::Vector3d& n) {
-      double most = -HUGE_VAL;
-      for (const auto& v : m.vertices) most = std::max(most, n.dot(v));
-      n_.push_back(n);
-      b_.push_back(most + 1e-12 * rho);
-    };
     for (int a = -1; a <= 1; ++a)
       for (int b = -1; b <= 1; ++b)
-        for (int c = -1; c <= 1; ++c)
-          if (a != 0 || b != 0 || c != 0) add(Eigen::Vector3d(a, b, c).normalized());
+        for (int c = -1; c <= 1; ++c) {
+          if (a == 0 && b == 0 && c == 0) continue;
+          const Eigen::Vector3d n = Eigen::Vector3d(a, b, c).normalized();
+          double most = -HUGE_VAL;
+          for (const auto& v : m.vertices) most = std::max(most, n.dot(v));
+          n_.push_back(n);
+          b_.push_back(most + 1e-12 * rho);
+        }
   }
   /// L(x), and g its subgradient there.
   double lower(const Eigen::Vector3d& x, Eigen::Vector3d& g) const {
