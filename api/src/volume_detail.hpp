@@ -1,13 +1,62 @@
-// api/src/volume_detail.hpp: what volume.cpp, volume_mesh.cpp and volume_written.cpp share.
+// api/src/volume_detail.hpp: what volume.cpp, volume_mesh.cpp, volume_lattice.cpp,
+// volume_adaptive.cpp and volume_written.cpp share.
 #pragma once
 #include <Eigen/Geometry>
 #include <array>
 #include <qmotion/api/volume.hpp>
 #include <qmotion/motion.hpp>
 #include <qmotion/sweep/body.hpp>
+#include <qmotion/sweep/swept_volume.hpp>
 #include <vector>
 
+namespace qmotion::sweep {
+class HullPieces;
+}
+
 namespace qmotion::detail {
+
+/// A certified enclosing mesh as it will be written (rounded when float32), from either
+/// route: V inside, closed, embedded, each vertex within distance_bound (<= T) of V.
+struct EnclosingMesh {
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<std::array<int, 3>> triangles;
+  /// Each vertex's bound: the placement the tree's search found for it (signed_upper).
+  std::vector<sweep::VolumeDistance> at;
+  double distance_bound = 0;
+  double enclosed = 0;       ///< the volume inside the mesh before rounding
+  double inside_volume = 0;  ///< of cells or tetrahedra certified inside V
+  double rounding = 0, level = 0;
+  double smallest_cell = 0, largest_cell = 0;  ///< edges of the cells the surface crosses
+  bool closed = false;
+  bool adaptive = false;
+  int rounds = 0;
+  std::size_t queries = 0, cells = 0, pieces = 0;
+};
+
+/// The lattice route (volume_lattice.cpp), for any body: a uniform lattice made finer until
+/// every vertex is within T.
+EnclosingMesh lattice_mesh(const Motion& motion, const sweep::SweptVolumeTree& tree, double T,
+                           const VolumeRounding& rounding);
+
+/// The adaptive route (volume_adaptive.cpp), for convex bodies: an octree refined where a
+/// triangle or a vertex is not certified.
+EnclosingMesh adaptive_mesh(const Motion& motion, const sweep::SweptVolumeTree& tree,
+                            const sweep::HullPieces& hulls, double T,
+                            const VolumeRounding& rounding);
+
+/// Errc::numerical_failure when T is too fine for the octree about box (checked before any
+/// work, on the sampled box).
+void refuse_octree(const Motion& motion, const Eigen::AlignedBox3d& box, double T);
+
+/// The volume inside a closed, outward-oriented mesh (the divergence theorem about `o`).
+double enclosed_volume(const std::vector<Eigen::Vector3d>& vertices,
+                       const std::vector<std::array<int, 3>>& triangles, const Eigen::Vector3d& o);
+
+/// Errc::invalid_input: float32 rounding by e is too coarse for the tolerance T.
+[[noreturn]] void refuse_float32(const Motion& motion, double e, double T,
+                                 const VolumeRounding& rounding);
+/// Errc::numerical_failure beyond 10^7 triangles.
+void refuse_size(const Motion& motion, double T, std::size_t triangles);
 
 /// The bounding box of V, sampled: the body's triangulation at 64 times a segment.
 Eigen::AlignedBox3d sampled_box(const Motion& m, const sweep::Body& body);

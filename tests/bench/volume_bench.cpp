@@ -27,8 +27,9 @@ double diagonal(const qmotion::Motion& m, const qmotion::sweep::Body& body) {
   return box.diagonal().norm();
 }
 
-void run(benchmark::State& state, const qmotion::Motion& m, double T) {
-  const auto body = qmotion::io::read_body("cutter:ball,6,20");
+qmotion::SweptVolume run(benchmark::State& state, const qmotion::Motion& m, double T,
+                         const char* spec = "cutter:ball,6,20") {
+  const auto body = qmotion::io::read_body(spec);
   qmotion::SweptVolume v;
   for (auto _ : state) {
     v = qmotion::swept_volume(m, body, T);
@@ -39,6 +40,7 @@ void run(benchmark::State& state, const qmotion::Motion& m, double T) {
   state.counters["queries"] = static_cast<double>(v.distance_queries);
   state.counters["pieces"] = static_cast<double>(v.time_pieces);
   state.counters["T_mm"] = T;
+  return v;
 }
 
 /// The 8-pose helix, T in thousandths of the swept volume's diagonal (1: the default).
@@ -64,6 +66,39 @@ BENCHMARK(BM_VolumeSpans)
     ->Arg(4)
     ->Arg(8)
     ->Arg(16)
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1);
+
+/// Issue 51's scenes: the 8-pose helix (0) and the tilting 10-pose B-spline of
+/// tests/data/poses/tilt_150.json (1); a ball cutter D 6, L 20 (0) and a flat cutter D 10,
+/// L 20 (1); T in micrometres, 0 for the default (1e-3 of the diagonal).
+void BM_VolumeScene(benchmark::State& state) {
+  const qmotion::Motion m =
+      state.range(0) == 0
+          ? helix(8)
+          : qmotion::interpolate(
+                qmotion::io::read_poses(std::string(QMOTION_TEST_DATA) + "/poses/tilt_150.json"),
+                {})
+                .motion;
+  const char* spec = state.range(1) == 0 ? "cutter:ball,6,20" : "cutter:flat,10,20";
+  const double T = state.range(2) > 0 ? 1e-3 * static_cast<double>(state.range(2))
+                                      : 1e-3 * diagonal(m, qmotion::io::read_body(spec));
+  const qmotion::SweptVolume v = run(state, m, T, spec);
+  state.counters["smallest_cell_mm"] = v.grid_step;
+  state.counters["largest_cell_mm"] = v.largest_cell;
+  state.counters["hull_pieces"] = static_cast<double>(v.hull_pieces);
+}
+BENCHMARK(BM_VolumeScene)
+    ->ArgNames({"scene", "cutter", "T_um"})
+    ->Args({0, 0, 0})
+    ->Args({0, 1, 0})
+    ->Args({1, 0, 0})
+    ->Args({1, 1, 0})
+    ->Args({0, 0, 50})
+    ->Args({0, 1, 50})
+    ->Args({1, 0, 50})
+    ->Args({1, 1, 50})
+    ->Args({0, 0, 10})
     ->Unit(benchmark::kSecond)
     ->Iterations(1);
 

@@ -114,13 +114,21 @@ class KeyframeBound {
   double operator()(const Keyframe& k0, const Keyframe& k1) const {
     const double blend = radius_ * detail::blend_bound(k0.rotation, k1.rotation);
     if (!std::isfinite(blend)) return blend;
+    return blend + linear(k0, k1);
+  }
+
+  /// The first term alone: |M(t)(1,x) - L(t)(1,x)| <= linear(k0, k1) for t in [k0.t, k1.t]
+  /// and |x| <= radius, L the linear blend of the keys' maps (detail::key_matrix). So the
+  /// body's piece of the swept volume there lies in the convex hull of the two placed bodies
+  /// grown by it (sweep::HullPieces).
+  double linear(const Keyframe& k0, const Keyframe& k1) const {
     const Eigen::Matrix<double, 3, 4> L0 = detail::key_matrix(k0), L1 = detail::key_matrix(k1);
     const double t0 = k0.t, t1 = k1.t;
     auto lerp = [&](double t) -> Eigen::Matrix<double, 3, 4> {
       const double s = (t - t0) / (t1 - t0);
       return (1 - s) * L0 + s * L1;
     };
-    return blend + (motion_.is_rational() ? rational_part(t0, t1, lerp) : spline_part(k0, k1));
+    return motion_.is_rational() ? rational_part(t0, t1, lerp) : spline_part(k0, k1);
   }
 
  private:

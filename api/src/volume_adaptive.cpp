@@ -1,0 +1,478 @@
+// api/src/volume_adaptive.cpp: the adaptive enclosing mesh of `volume` for convex bodies
+// (docs/guide/volume.md, "The adaptive mesh"; volume_detail.hpp).
+//
+// The surface is the level tau of the piecewise-linear interpolant g, over the octree's
+// conforming tetrahedra (volume_octree.hpp), of phi: at every tetrahedron's corner, the
+// signed distance to the body at the best placement the tree's search finds (an upper bound
+// of the signed distance to V). It is closed, 2-manifold, oriented and embedded: a level of a
+// piecewise-linear function over a complex, at a value no corner takes. The proof that it
+// encloses V is triangle by triangle: each is certified clear of V (sweep::HullPieces). V is
+// connected and meets no triangle, so it lies in one component of the space off the surface:
+// the one of a corner inside V (phi < 0 < tau there), inside the surface. Every vertex is
+// bounded within the tolerance by a placement. A leaf whose triangles or vertices fail is
+// split, and the tree balanced again, until none fails.
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <qmotion/kernel/error.hpp>
+#include <qmotion/sweep/hull_pieces.hpp>
+#include <qmotion/sweep/swept_volume.hpp>
+#include <string>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include "volume_detail.hpp"
+#include "volume_octree.hpp"
+
+namespace qmotion::detail {
+namespace {
+
+/// The level, in T: the triangles may sag by about T - tau towards V between vertices at tau
+/// (so the higher the fewer), and a vertex's bound is its level plus the search's gap and
+/// the interpolation's error (at most T). 0.85 made the fewest triangles on the helix
+/// (0.5: 449 250 at T = 0.05 mm, 0.8: 239 874, 0.88: 219 584, 0.94: 224 402).
+constexpr double kLevel = 0.85;
+
+/// A vertex of the surface: the tetrahedra's edge it lies on, by its ends' keys (lower first).
+struct EdgeKey {
+  OctKey a = 0, b = 0;
+  bool operator==(const EdgeKey& o) const { return a == o.a && b == o.b; }
+};
+struct EdgeHash {
+  std::size_t operator()(const EdgeKey& e) const {
+    return static_cast<std::size_t>((e.a * 0x9E3779B97F4A7C15ull) ^ (e.b + (e.a << 6)));
+  }
+};
+using Tri = std::array<EdgeKey, 3>;
+
+struct Leaf {
+  OctKey key = 0;
+  std::vector<Tri> tris;     ///< this round's
+  std::vector<Tri> checked;  ///< the triangles last certified (all of them passed)
+  bool ok = false;
+  double inside = 0;  ///< volume of its tetrahedra certified inside V
+};
+
+class Mesher {
+ public:
+  /// eps: how far from tau a corner's value is kept.
+  Mesher(const Motion& motion, const sweep::SweptVolumeTree& tree, const sweep::HullPieces& hulls,
+         const Eigen::AlignedBox3d& box, double T, double tau, double e, double eps)
+      : motion_(motion),
+        tree_(tree),
+        hulls_(hulls),
+        T_(T),
+        tau_(tau),
+        e_(e),
+        eps_(eps),
+        scale_(box.diagonal().norm()),
+        octree_(make_octree(box, T)) {}
+
+  EnclosingMesh run() {
+    EnclosingMesh out;
+    std::vector<OctKey> fresh;
+    for (const auto& [k, c] : octree_.leaves()) fresh.push_back(k);
+    for (out.rounds = 1;; ++out.rounds) {
+      octree_.balance(fresh);
+      classify();
+      // Only the leaves whose tetrahedra may have changed are made again: new ones, and
+      // those next to a split cell (Octree::touched).
+      std::vector<Leaf*> dirty = dirty_leaves(fresh);
+      evaluate(dirty);
+      for_each(dirty, [&](Leaf& L) { L.tris = triangles(L); });
+      std::size_t count = 0;
+      for (const auto& [k, L] : leaves_) count += L.tris.size();
+      refuse_size(motion_, T_, count);
+      bound_vertices(dirty);
+      for_each(dirty, [&](Leaf& L) { certify(L); });
+      std::vector<OctKey> failed;
+      for (Leaf* L : dirty)
+        if (!L->ok) failed.push_back(L->key);
+      if (failed.empty()) {
+        finish(out);
+        return out;
+      }
+      fresh.clear();
+      for (const OctKey c : failed) {
+        if (Octree::level(c) >= Octree::kFinest)
+          throw Error(Errc::numerical_failure,
+                      "volume: a cell of the finest level could not be certified (the tolerance " +
+                          kernel::detail::format_double(T_) + " is too fine for the scene)");
+        octree_.split(c, &fresh);
+      }
+      if (out.rounds > 40)  // never seen: each round splits, and the finest level ends it
+        throw Error(Errc::numerical_failure, "volume: the adaptive mesh did not converge");
+    }
+  }
+
+  /// The roots' edge: they hold the box (which holds V) with a margin where every value
+  /// exceeds tau, at most 32 along an axis.
+  static double root_edge(const Eigen::AlignedBox3d& box, double T) {
+    const double pad = 4 * T + 1e-3 * box.diagonal().norm();
+    return (box.sizes() + Eigen::Vector3d::Constant(2 * pad)).maxCoeff() / 31.5;
+  }
+
+ private:
+  static Octree make_octree(const Eigen::AlignedBox3d& box, double T) {
+    const double pad = 4 * T + 1e-3 * box.diagonal().norm();
+    const Eigen::Vector3d size = box.sizes() + Eigen::Vector3d::Constant(2 * pad);
+    const double root = root_edge(box, T);
+    std::array<long, 3> n{};
+    for (int a = 0; a < 3; ++a)
+      n[static_cast<std::size_t>(a)] = std::max(1L, static_cast<long>(std::ceil(size(a) / root)));
+    return Octree(box.min() - Eigen::Vector3d::Constant(pad), root, n);
+  }
+
+  template <typename F>
+  static void for_each(const std::vector<Leaf*>& v, const F& f) {
+    tbb::parallel_for(std::size_t(0), v.size(), [&](std::size_t i) { f(*v[i]); });
+  }
+
+  double half_diagonal(OctKey c) const {
+    return 0.5 * std::sqrt(3.0) * static_cast<double>(Octree::size(Octree::level(c))) *
+           octree_.unit();
+  }
+  Eigen::Vector3d centre(OctKey c) const {
+    OctPoint p = Octree::corner(c);
+    const long h = Octree::size(Octree::level(c)) / 2;
+    for (auto& x : p) x += h;
+    return octree_.position(p);
+  }
+
+  /// Every leaf of unknown kind: far when its bound at the centre, less the half-diagonal,
+  /// exceeds tau (every corner's value, an upper bound, does too), deep when a placement
+  /// holds the whole cell deeper than the search's gap (every corner's value is below 0).
+  void classify() {
+    std::vector<OctKey> todo;
+    for (const auto& [k, c] : octree_.leaves())
+      if (c.kind == Octree::Kind::unknown) todo.push_back(k);
+    std::vector<Octree::Kind> kind(todo.size());
+    tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t i) {
+      const double r = half_diagonal(todo[i]);
+      const auto d = tree_.query(centre(todo[i]), -(r + 2 * tree_.largest_leaf_delta()));
+      if (d.lower - r > tau_ + eps_)
+        kind[i] = Octree::Kind::far;
+      else if (d.signed_upper + r + tree_.largest_leaf_delta() + 1e-12 * scale_ < 0)
+        kind[i] = Octree::Kind::deep;
+      else
+        kind[i] = Octree::Kind::near;
+    });
+    queries_ += todo.size();
+    for (std::size_t i = 0; i < todo.size(); ++i) {
+      octree_.cell(todo[i]).kind = kind[i];
+      if (kind[i] == Octree::Kind::deep) {
+        const double s = static_cast<double>(Octree::size(Octree::level(todo[i]))) * octree_.unit();
+        deep_volume_ += s * s * s;
+      }
+    }
+  }
+
+  /// The near leaves among `fresh` and those next to a cell split since the last round;
+  /// the leaves of split cells are dropped.
+  std::vector<Leaf*> dirty_leaves(const std::vector<OctKey>& fresh) {
+    std::vector<OctKey> keys = fresh;
+    for (const OctKey x : octree_.take_split()) {
+      leaves_.erase(x);
+      octree_.touching(x, keys);
+    }
+    std::sort(keys.begin(), keys.end());
+    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+    std::vector<Leaf*> out;
+    for (const OctKey k : keys) {
+      const auto it = octree_.leaves().find(k);
+      if (it == octree_.leaves().end() || it->second.kind != Octree::Kind::near) continue;
+      Leaf& L = leaves_[k];
+      L.key = k;
+      out.push_back(&L);
+    }
+    return out;
+  }
+
+  /// phi at every corner of the near leaves' tetrahedra not yet known.
+  void evaluate(const std::vector<Leaf*>& near) {
+    std::vector<std::vector<OctKey>> want(near.size());
+    tbb::parallel_for(std::size_t(0), near.size(), [&](std::size_t i) {
+      std::vector<Octree::Tet> tets;
+      octree_.tets(near[i]->key, tets);
+      for (const auto& t : tets)
+        for (const auto& p : t) {
+          const OctKey k = Octree::vertex_key(p);
+          if (!value_.count(k)) want[i].push_back(k);
+        }
+    });
+    std::vector<OctKey> all;
+    for (auto& w : want) all.insert(all.end(), w.begin(), w.end());
+    std::sort(all.begin(), all.end());
+    all.erase(std::unique(all.begin(), all.end()), all.end());
+    std::vector<Value> v(all.size());
+    tbb::parallel_for(std::size_t(0), all.size(), [&](std::size_t i) {
+      const OctPoint p = point(all[i]);
+      // Deeper than twice the coarsest cell the corner belongs to, the depth is not needed.
+      const double reach = 2 * static_cast<double>(Octree::alignment(p)) * octree_.unit();
+      const auto d = tree_.query(octree_.position(p), -reach);
+      double x = d.signed_upper;
+      // No corner on the level: within eps of tau it is moved below (the surface's vertices
+      // are bounded where they lie, whatever phi is).
+      if (std::abs(x - tau_) < eps_) x = tau_ - eps_;
+      v[i] = {x, d.t};
+    });
+    queries_ += all.size();
+    for (std::size_t i = 0; i < all.size(); ++i) value_.emplace(all[i], v[i]);
+  }
+
+  static OctPoint point(OctKey k) {
+    const OctKey m = (OctKey(1) << 21) - 1;
+    return {static_cast<long>(k >> 42 & m), static_cast<long>(k >> 21 & m),
+            static_cast<long>(k & m)};
+  }
+  Eigen::Vector3d on_edge(const EdgeKey& e) const {
+    const double va = value_.at(e.a).v, vb = value_.at(e.b).v;
+    const Eigen::Vector3d pa = octree_.position(point(e.a)), pb = octree_.position(point(e.b));
+    return pa + (tau_ - va) / (vb - va) * (pb - pa);
+  }
+
+  /// Marching tetrahedra over a leaf: each triangle faces from below tau to above. Also sums
+  /// the tetrahedra that lie in V (inside_part).
+  std::vector<Tri> triangles(Leaf& L) const {
+    std::vector<Octree::Tet> tets;
+    octree_.tets(L.key, tets);
+    std::vector<Tri> out;
+    L.inside = 0;
+    for (const auto& t : tets) {
+      OctKey k[4];
+      double v[4], at[4];
+      int in[4], ot[4], ni = 0, no = 0;
+      for (int i = 0; i < 4; ++i) {
+        k[i] = Octree::vertex_key(t[static_cast<std::size_t>(i)]);
+        const Value& x = value_.at(k[i]);
+        v[i] = x.v;
+        at[i] = x.t;
+        (v[i] < tau_ ? in[ni++] : ot[no++]) = i;
+      }
+      if (no == 0) {
+        L.inside += inside_part(t, v, at);
+        continue;
+      }
+      if (ni == 0) continue;
+      auto edge = [&](int i, int o) {
+        return k[i] < k[o] ? EdgeKey{k[i], k[o]} : EdgeKey{k[o], k[i]};
+      };
+      const Eigen::Vector3d toward = octree_.position(t[static_cast<std::size_t>(ot[0])]) -
+                                     octree_.position(t[static_cast<std::size_t>(in[0])]);
+      auto emit = [&](const EdgeKey& a, const EdgeKey& b, const EdgeKey& c) {
+        const Eigen::Vector3d pa = on_edge(a), pb = on_edge(b), pc = on_edge(c);
+        if ((pb - pa).cross(pc - pa).dot(toward) >= 0)
+          out.push_back({a, b, c});
+        else
+          out.push_back({a, c, b});
+      };
+      if (ni == 1) {
+        emit(edge(in[0], ot[0]), edge(in[0], ot[1]), edge(in[0], ot[2]));
+      } else if (ni == 3) {
+        emit(edge(in[0], ot[0]), edge(in[1], ot[0]), edge(in[2], ot[0]));
+      } else {  // a planar quadrilateral: i0o0, i0o1, i1o1, i1o0 in turn
+        emit(edge(in[0], ot[0]), edge(in[0], ot[1]), edge(in[1], ot[1]));
+        emit(edge(in[0], ot[0]), edge(in[1], ot[1]), edge(in[1], ot[0]));
+      }
+    }
+    return out;
+  }
+
+  /// The tetrahedron's volume when it lies in V, else 0: when its four corners lie in one
+  /// placement of the body (convex), or each in its own deeper than the circumradius (every
+  /// point of a tetrahedron is within it of a corner).
+  double inside_part(const Octree::Tet& t, const double* v, const double* at) const {
+    for (int i = 0; i < 4; ++i)
+      if (!(v[i] < 0)) return 0;
+    Eigen::Vector3d p[4];
+    for (int i = 0; i < 4; ++i) p[i] = octree_.position(t[static_cast<std::size_t>(i)]);
+    Eigen::Matrix3d A;
+    Eigen::Vector3d b;
+    for (int i = 0; i < 3; ++i) {
+      A.row(i) = (p[i + 1] - p[0]).transpose();
+      b(i) = 0.5 * (p[i + 1] - p[0]).squaredNorm();
+    }
+    const double det = A.determinant();
+    if (!(std::abs(det) > 0)) return 0;
+    const double R = (A.inverse() * b).norm() * (1 + 1e-9);
+    bool balls = true;
+    for (int i = 0; i < 4; ++i) balls = balls && -v[i] >= R;
+    if (balls) return std::abs(det) / 6;
+    const double margin = 1e-12 * scale_;
+    for (int j = 0; j < 4; ++j) {
+      bool in_one = true;
+      for (int i = 0; i < 4 && in_one; ++i)
+        in_one = i == j || tree_.placed_distance(p[i], at[j]) < -margin;
+      if (in_one) return std::abs(det) / 6;
+    }
+    return 0;
+  }
+
+  /// Each new vertex's distance to V, bounded above by the best placement of a search, and
+  /// the direction from that placement of the body to the vertex (the subgradient of its
+  /// signed distance): about the surface, the direction that separates it from V.
+  void bound_vertices(const std::vector<Leaf*>& dirty) {
+    std::vector<EdgeKey> todo;
+    for (const Leaf* L : dirty)
+      for (const Tri& t : L->tris)
+        for (const EdgeKey& e : t)
+          if (!bound_.count(e)) todo.push_back(e);
+    std::sort(todo.begin(), todo.end(), [](const EdgeKey& x, const EdgeKey& y) {
+      return x.a < y.a || (x.a == y.a && x.b < y.b);
+    });
+    todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
+    std::vector<Bound> b(todo.size());
+    tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t i) {
+      const Eigen::Vector3d x = on_edge(todo[i]);
+      b[i].d = tree_.query(x, 0);
+      const Eigen::Matrix4d f = motion_.frame(b[i].d.t);
+      const Eigen::Matrix3d R = f.block<3, 3>(1, 1);
+      Eigen::Vector3d g;
+      sweep::signed_distance(tree_.body(), R.transpose() * (x - f.block<3, 1>(1, 0)), g);
+      b[i].n = R * g;
+    });
+    queries_ += todo.size();
+    for (std::size_t i = 0; i < todo.size(); ++i) bound_.emplace(todo[i], b[i]);
+  }
+
+  /// A leaf passes when every vertex of its triangles is within T (less the rounding e) and
+  /// every triangle is clear of V by e. Unchanged triangles that passed are not asked again.
+  void certify(Leaf& L) const {
+    if (L.ok && L.tris == L.checked) return;
+    L.ok = false;
+    for (const Tri& t : L.tris)
+      for (const EdgeKey& e : t)
+        if (!(std::max(bound_.at(e).d.signed_upper, 0.0) + 1e-12 * scale_ + e_ <= T_)) return;
+    for (const Tri& t : L.tris) {
+      std::array<Eigen::Vector3d, 3> p;
+      for (int i = 0; i < 3; ++i)
+        p[static_cast<std::size_t>(i)] = on_edge(t[static_cast<std::size_t>(i)]);
+      Eigen::Vector3d n = (p[1] - p[0]).cross(p[2] - p[0]), m = Eigen::Vector3d::Zero();
+      n = n.norm() > 0 ? Eigen::Vector3d(n.normalized()) : Eigen::Vector3d::UnitZ();
+      for (const EdgeKey& e : t) m += bound_.at(e).n;
+      m = m.norm() > 0 ? Eigen::Vector3d(m.normalized()) : n;
+      if (!hulls_.clear(p, {m, n}, e_)) return;
+    }
+    L.checked = L.tris;
+    L.ok = true;
+  }
+
+  /// The mesh: vertices numbered by their edges in the leaves' order.
+  void finish(EnclosingMesh& out) {
+    std::unordered_map<EdgeKey, int, EdgeHash> index;
+    auto number = [&](const EdgeKey& e) {
+      const auto [it, fresh] = index.emplace(e, static_cast<int>(out.vertices.size()));
+      if (fresh) {
+        out.vertices.push_back(on_edge(e));
+        out.at.push_back(bound_.at(e).d);
+      }
+      return it->second;
+    };
+    std::vector<Leaf*> near;
+    for (auto& [k, L] : leaves_) near.push_back(&L);
+    bool inside_point = false;
+    out.smallest_cell = HUGE_VAL;
+    for (Leaf* L : near) {
+      for (const Tri& t : L->tris)
+        out.triangles.push_back({number(t[0]), number(t[1]), number(t[2])});
+      out.inside_volume += L->inside;
+      if (L->tris.empty()) continue;
+      const double s = static_cast<double>(Octree::size(Octree::level(L->key))) * octree_.unit();
+      out.smallest_cell = std::min(out.smallest_cell, s);
+      out.largest_cell = std::max(out.largest_cell, s);
+      ++out.cells;
+    }
+    for (const auto& [k, v] : value_) inside_point = inside_point || v.v < 0;
+    if (out.triangles.empty() || !inside_point)
+      throw Error(Errc::numerical_failure,
+                  "volume: the adaptive mesh found no point of the volume (a body too small "
+                  "for the scene?)");
+    out.inside_volume += deep_volume_;
+    out.queries = queries_;
+    out.pieces = hulls_.size();
+    out.level = tau_;
+    out.adaptive = true;
+  }
+
+  const Motion& motion_;
+  const sweep::SweptVolumeTree& tree_;
+  const sweep::HullPieces& hulls_;
+  double T_, tau_, e_, eps_, scale_;
+  Octree octree_;
+  struct Value {
+    double v = 0;  ///< phi
+    double t = 0;  ///< the placement that gave it
+  };
+  std::unordered_map<OctKey, Value> value_;
+  std::map<OctKey, Leaf> leaves_;
+  struct Bound {
+    sweep::VolumeDistance d;
+    Eigen::Vector3d n = Eigen::Vector3d::Zero();
+  };
+  std::unordered_map<EdgeKey, Bound, EdgeHash> bound_;
+  double deep_volume_ = 0;
+  std::size_t queries_ = 0;
+};
+
+}  // namespace
+
+void refuse_octree(const Motion& motion, const Eigen::AlignedBox3d& box, double T) {
+  // The finest cell is a root's 2^-14; below about 8 of them the surface has no room.
+  const double finest = Mesher::root_edge(box, T) / static_cast<double>(1 << Octree::kFinest);
+  if (T < 8 * finest)
+    throw Error(Errc::numerical_failure,
+                motion.label() + ": the tolerance " + kernel::detail::format_double(T) +
+                    " is too fine for the swept volume's extent " +
+                    kernel::detail::format_double(box.diagonal().norm()) +
+                    " (the octree's finest cell would be " + kernel::detail::format_double(finest) +
+                    "): raise --tol");
+}
+
+EnclosingMesh adaptive_mesh(const Motion& motion, const sweep::SweptVolumeTree& tree,
+                            const sweep::HullPieces& hulls, double T,
+                            const VolumeRounding& rounding) {
+  const Eigen::AlignedBox3d box = tree.bounds();
+  const double scale = box.diagonal().norm();
+  // Written as float32, a vertex moves by up to e, and so does every point of a triangle
+  // (a convex combination of its vertices): the triangles are certified clear of V by e, and
+  // the vertices within T - e (docs/guide/volume.md, "What is written is what was
+  // certified").
+  const double e = rounding.float32 ? float32_written(box, T, 0, rounding) : 0.0;
+  if (e > 0.05 * T) refuse_float32(motion, e, T, rounding);
+  // Rounded, two vertices of the surface near one corner of a tetrahedron could fall on one
+  // point: the corners' values are kept 8 e (then 32 e, 128 e) from the level, which keeps
+  // the vertices about that far from the corners; closed_as_written measures it.
+  EnclosingMesh m;
+  for (int attempt = 0;; ++attempt) {
+    const double eps = std::max(1e-6 * T, 8 * e * std::pow(4.0, attempt));
+    m = Mesher(motion, tree, hulls, box, T, kLevel * T + e, e, eps).run();
+    refuse_size(motion, T, m.triangles.size());
+    m.enclosed = enclosed_volume(m.vertices, m.triangles, box.center());
+    m.rounding = e;
+    if (rounding.float32) {
+      round_to_float32(m.vertices, rounding.scale);
+      tbb::parallel_for(std::size_t(0), m.vertices.size(),
+                        [&](std::size_t v) { m.at[v] = tree.query(m.vertices[v], 0); });
+      m.queries += m.vertices.size();
+    }
+    m.closed = closed_as_written(m.vertices, m.triangles);
+    if (m.closed) break;
+    if (!rounding.float32 || attempt == 2)
+      throw Error(Errc::numerical_failure,
+                  motion.label() + ": the adaptive mesh is not closed as written");
+  }
+  for (const auto& d : m.at)
+    m.distance_bound = std::max(m.distance_bound, std::max(d.signed_upper, 0.0));
+  m.distance_bound += 1e-12 * scale;
+  if (!(m.distance_bound <= T))
+    throw Error(Errc::numerical_failure, motion.label() +
+                                             ": a vertex lies farther than the tolerance " +
+                                             kernel::detail::format_double(T) + " (" +
+                                             kernel::detail::format_double(m.distance_bound) + ")");
+  return m;
+}
+
+}  // namespace qmotion::detail

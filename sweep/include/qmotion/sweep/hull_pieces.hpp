@@ -1,0 +1,362 @@
+// <qmotion/sweep/hull_pieces.hpp>: the space a convex body sweeps, covered by convex pieces
+// of second order (the hull of the body at two times, grown by the motion's certified
+// deviation from the linear blend), and a certificate that a triangle stays clear of all of
+// them (docs/guide/volume.md, "The adaptive mesh").
+#pragma once
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <qmotion/kernel/error.hpp>
+#include <qmotion/motion.hpp>
+#include <qmotion/sweep/body.hpp>
+#include <qmotion/sweep/keyframes.hpp>
+#include <vector>
+
+namespace qmotion::sweep {
+
+/// The point of a convex body (is_convex) farthest along u, in the moving space: its support
+/// point, so that h(u) = u . support_point(u) is the body's support function. The revolved
+/// bodies are the hull of their top disk and of their bottom disk of radius R - rc at height
+/// rc grown by a ball of radius rc (the flat cutter and the cylinder: rc = 0; the ball
+/// cutter: rc = R).
+inline Eigen::Vector3d support_point(const Body& body, const Eigen::Vector3d& u) {
+  using K = Body::Kind;
+  const double n = u.norm();
+  switch (body.kind) {
+    case K::sphere:
+      return n > 0 ? Eigen::Vector3d(body.r * u / n) : Eigen::Vector3d(body.r, 0, 0);
+    case K::box:
+      return 0.5 * Eigen::Vector3d(u.x() < 0 ? -body.a : body.a, u.y() < 0 ? -body.b : body.b,
+                                   u.z() < 0 ? -body.c : body.c);
+    case K::mesh:
+      break;
+    default: {
+      const bool cyl = body.kind == K::cylinder;
+      const double R = cyl ? body.r : body.D / 2, L = cyl ? body.h : body.L;
+      const double rc = cyl || body.kind == K::flat_cutter ? 0.0
+                        : body.kind == K::ball_cutter      ? R
+                                                           : body.rc;
+      const double m = std::sqrt(u.x() * u.x() + u.y() * u.y());
+      const Eigen::Vector3d ex =
+          m > 0 ? Eigen::Vector3d(u.x() / m, u.y() / m, 0.0) : Eigen::Vector3d::Zero();
+      const Eigen::Vector3d top = R * ex + Eigen::Vector3d(0, 0, L);
+      Eigen::Vector3d bottom = (R - rc) * ex + Eigen::Vector3d(0, 0, rc);
+      if (n > 0) bottom += rc * u / n;
+      return u.dot(top) >= u.dot(bottom) ? top : bottom;
+    }
+  }
+  throw Error(Errc::invalid_input, "support_point: a mesh body is not taken as convex");
+}
+
+/// V = { M(t) x : t in [a, b], x in K } for a convex body K, covered by pieces: between two
+/// consecutive keys k0, k1 of the motion (sweep::place_keyframes, exact poses), every point
+/// M(t) x lies within delta = KeyframeBound::linear(k0, k1) of the linear blend
+/// (1 - s) M0 x + s M1 x, a point of C = conv(M0 K u M1 K). So V lies in the union of the sets
+/// C grown by delta. Their distance to a triangle is bounded below by a separating
+/// direction n: every point y of C has n . y <= max(h0(n), h1(n)), hi(n) = n . pi +
+/// h_K(Ri^T n), so the triangle is farther than delta + m from C's growth when
+/// min over its corners of n . x - max(h0(n), h1(n)) > delta + m. The direction is the
+/// triangle's normal first, then GJK's (Gilbert, Johnson, Keerthi 1988) on the triangle and
+/// C, whose support point is the placed body's of the larger hi.
+///
+/// The pieces sit under a binary tree over the keys: a node over keys lo..hi holds the
+/// placement of its middle key Mm and a reach, max delta + max_j lever_norm(Mj - Mm, rho)
+/// (detail::lever_norm: |(Mj - Mm)(1, x)| for |x| <= rho), so its pieces lie in Mm K grown by
+/// the reach, and a ball about Mm's body ball.
+class HullPieces {
+ public:
+  struct Stats {
+    std::size_t node_tests = 0, piece_tests = 0, gjk = 0;
+  };
+
+  /// Errc::invalid_input for a body that is not convex; Errc::numerical_failure from
+  /// place_keyframes.
+  HullPieces(const qmotion::Motion& m, const Body& body, double delta_max)
+      : body_(body), rho_(radius(body)) {
+    if (!is_convex(body))
+      throw Error(Errc::invalid_input, "hull pieces: the body " + body.spec + " is not convex");
+    // A ball about the body: the sphere's and the box's own; about the middle of a revolved
+    // body's axis, the farther of its top rim and of its bottom torus (or disk).
+    using K = Body::Kind;
+    if (body.kind == K::sphere) {
+      ball_radius_ = body.r;
+    } else if (body.kind == K::box) {
+      ball_radius_ = radius(body);
+    } else {
+      const bool cyl = body.kind == K::cylinder;
+      const double R = cyl ? body.r : body.D / 2, L = cyl ? body.h : body.L;
+      const double rc = cyl || body.kind == K::flat_cutter ? 0.0
+                        : body.kind == K::ball_cutter      ? R
+                                                           : body.rc;
+      ball_centre_ = Eigen::Vector3d(0, 0, L / 2);
+      ball_radius_ = std::max(std::hypot(R, L / 2), std::hypot(R - rc, L / 2 - rc) + rc);
+    }
+    ball_radius_ *= 1 + 1e-12;
+    KeyframeOptions opt;
+    opt.tol = delta_max;
+    opt.radius = rho_;
+    const auto placed = place_keyframes(m, opt).keys;
+    // A piece's hull is wider than what the body sweeps where it turns: a point
+    // (1 - s) M0 x + s M1 y of the hull is s (1 - s) (R0 - R1)(x - y) from the blend of
+    // (1 - s) x + s y, so the excess is up to |R0 - R1| diam / 4, first order in the turn.
+    // Pieces are halved until that estimate (for a revolved body, the turn of its axis;
+    // none for a sphere) is below 2 delta_max. It decides only how tight the cover is: every
+    // piece's hull holds what the body sweeps over it whatever its length.
+    std::vector<Keyframe> keys{placed.front()};
+    for (std::size_t k = 0; k + 1 < placed.size(); ++k)
+      refine(m, keys, placed[k + 1], 2 * delta_max, 0);
+    const KeyframeBound bound(m, rho_, opt.subdivisions);
+    double far = rho_;
+    for (const auto& k : keys) {
+      keys_.push_back(detail::key_matrix(k));
+      far = std::max(far, k.translation.norm() + rho_);
+    }
+    for (std::size_t k = 0; k + 1 < keys.size(); ++k) {
+      delta_.push_back(bound.linear(keys[k], keys[k + 1]));
+      largest_ = std::max(largest_, delta_.back());
+    }
+    if (delta_.empty()) {  // a motion of one pose
+      keys_.push_back(keys_.back());
+      delta_.push_back(0);
+    }
+    // The rounding of a support value and of the products: relative 1e-12 of the scene.
+    rounding_ = 1e-12 * far;
+    build(0, static_cast<int>(delta_.size()));
+  }
+
+  std::size_t size() const { return delta_.size(); }
+  /// How much wider a piece's hull may be than the body's sweep over it (see the
+  /// constructor): a turn's measure times the body's diameter / 4.
+  double turn_excess(const Keyframe& k0, const Keyframe& k1) const {
+    using K = Body::Kind;
+    if (body_.kind == K::sphere) return 0;
+    const Eigen::Matrix3d R0 = k0.rotation.normalized().toRotationMatrix(),
+                          R1 = k1.rotation.normalized().toRotationMatrix();
+    const double turn = body_.kind == K::box ? (R1 - R0).norm() : (R1.col(2) - R0.col(2)).norm();
+    return turn * 2 * ball_radius_ / 4;
+  }
+  double largest_delta() const { return largest_; }
+
+  /// Whether the triangle (a, b, c) is certainly farther than margin from V. `dirs`, unit
+  /// vectors, are the directions tried first (the surface's normal about the triangle, the
+  /// triangle's own); GJK's after them.
+  bool clear(const std::array<Eigen::Vector3d, 3>& tri, const std::array<Eigen::Vector3d, 2>& dirs,
+             double margin, Stats* stats = nullptr) const {
+    int stack[64], top = 0;
+    stack[top++] = 0;
+    // The directions tried: the two given, and the last that GJK found (consecutive pieces
+    // are apart along much the same direction).
+    Directions d;
+    for (int i = 0; i < 2; ++i) d.add(dirs[static_cast<std::size_t>(i)], tri);
+    while (top > 0) {
+      const Node& nd = nodes_[static_cast<std::size_t>(stack[--top])];
+      if (stats) ++stats->node_tests;
+      const double need = nd.reach + margin + rounding_;
+      if ((detail::closest_on_triangle(nd.centre, tri[0], tri[1], tri[2]) - nd.centre).norm() >
+          nd.radius + margin + rounding_)
+        continue;
+      bool apart = false;
+      for (int i = 0; i < d.n && !apart; ++i) apart = d.low[i] - support(nd.key, d.n_[i]) > need;
+      if (apart) continue;
+      if (nd.child[0] < 0) {
+        if (stats) ++stats->piece_tests;
+        if (!piece_clear(nd.lo, tri, d, margin, stats)) return false;
+        continue;
+      }
+      stack[top++] = nd.child[0];
+      stack[top++] = nd.child[1];
+    }
+    return true;
+  }
+
+ private:
+  using Map = Eigen::Matrix<double, 3, 4>;
+  struct Node {
+    int lo = 0, hi = 0, key = 0;  ///< pieces lo..hi-1, keys lo..hi; key: the middle one
+    double reach = 0, radius = 0;
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    int child[2] = {-1, -1};
+  };
+
+  /// hi(n): the support value of the body placed by key k.
+  double support(int k, const Eigen::Vector3d& n) const {
+    const Map& M = keys_[static_cast<std::size_t>(k)];
+    const Eigen::Vector3d u = M.rightCols<3>().transpose() * n;
+    return n.dot(M.col(0)) + u.dot(support_point(body_, u));
+  }
+  /// The support point of C = conv(M_k K u M_k+1 K) along d.
+  Eigen::Vector3d piece_support(int k, const Eigen::Vector3d& d) const {
+    Eigen::Vector3d best = Eigen::Vector3d::Zero();
+    double most = -HUGE_VAL;
+    for (int j = k; j <= k + 1; ++j) {
+      const Map& M = keys_[static_cast<std::size_t>(j)];
+      const Eigen::Vector3d y =
+          M.col(0) + M.rightCols<3>() * support_point(body_, M.rightCols<3>().transpose() * d);
+      if (d.dot(y) > most) {
+        most = d.dot(y);
+        best = y;
+      }
+    }
+    return best;
+  }
+
+  /// Directions with the triangle's least extent along each.
+  struct Directions {
+    Eigen::Vector3d n_[3];
+    double low[3] = {0, 0, 0};
+    int n = 0;
+    void add(const Eigen::Vector3d& u, const std::array<Eigen::Vector3d, 3>& tri) {
+      const int i = n < 3 ? n++ : 2;
+      n_[i] = u;
+      low[i] = std::min({u.dot(tri[0]), u.dot(tri[1]), u.dot(tri[2])});
+    }
+  };
+
+  bool piece_clear(int k, const std::array<Eigen::Vector3d, 3>& tri, Directions& dirs,
+                   double margin, Stats* stats) const {
+    const double need = delta_[static_cast<std::size_t>(k)] + margin + rounding_;
+    for (int i = dirs.n - 1; i >= 0; --i) {
+      const Eigen::Vector3d& n = dirs.n_[i];
+      if (dirs.low[i] - std::max(support(k, n), support(k + 1, n)) > need) return true;
+    }
+    if (stats) ++stats->gjk;
+    // GJK on D = triangle - C: v, the point of the simplex W nearest the origin, is a point
+    // of D, so |v| >= dist; w, D's point least along v, gives the plane v . x >= v . w that
+    // holds D: dist >= v . w / |v|, which is the separation along v / |v| above.
+    Simplex W;
+    Eigen::Vector3d v = (tri[0] + tri[1] + tri[2]) / 3 - piece_support(k, -dirs.n_[0]);
+    for (int it = 0; it < 48; ++it) {
+      const double vn = v.norm();
+      if (!(vn > need)) return false;
+      int lo = 0;
+      for (int i = 1; i < 3; ++i)
+        if (v.dot(tri[static_cast<std::size_t>(i)]) < v.dot(tri[static_cast<std::size_t>(lo)]))
+          lo = i;
+      const Eigen::Vector3d w = tri[static_cast<std::size_t>(lo)] - piece_support(k, v);
+      const Eigen::Vector3d d = v / vn;
+      const double low =
+          d.dot(tri[static_cast<std::size_t>(lo)]) - std::max(support(k, d), support(k + 1, d));
+      if (low > need) {
+        dirs.add(d, tri);
+        return true;
+      }
+      if (vn * vn - v.dot(w) <= 1e-12 * vn * vn) return false;  // converged short of need
+      W.p[W.n++] = w;
+      v = nearest_on_simplex(W);
+      if (W.n == 4) return false;  // the origin inside a tetrahedron of D: they meet
+    }
+    return false;
+  }
+
+  struct Simplex {
+    Eigen::Vector3d p[4];
+    int n = 0;
+  };
+
+  /// The point of conv(W) nearest the origin (W: up to four points); W keeps the face it
+  /// lies on. Every face's affine nearest point is tried; the nearest one inside its face wins.
+  static Eigen::Vector3d nearest_on_simplex(Simplex& W) {
+    const int n = W.n;
+    double best = HUGE_VAL;
+    int best_mask = 1;
+    Eigen::Vector3d best_x = W.p[0];
+    for (int mask = 1; mask < (1 << n); ++mask) {
+      int idx[4] = {0, 0, 0, 0}, k = 0;
+      for (int i = 0; i < n; ++i)
+        if (mask >> i & 1) idx[k++] = i;
+      const Eigen::Vector3d& w0 = W.p[idx[0]];
+      Eigen::Vector3d x = w0;
+      if (k > 1) {
+        // Minimise |w0 + A mu| over mu: (A^T A) mu = -A^T w0, at most 3 x 3.
+        Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+        for (int i = 1; i < k; ++i) A.col(i - 1) = W.p[idx[i]] - w0;
+        const int m = k - 1;
+        const Eigen::Matrix3d G = A.transpose() * A;
+        const Eigen::Vector3d r = -A.transpose() * w0;
+        Eigen::Vector3d mu = Eigen::Vector3d::Zero();
+        if (m == 1) {
+          if (!(G(0, 0) > 0)) continue;
+          mu(0) = r(0) / G(0, 0);
+        } else if (m == 2) {
+          const Eigen::Matrix2d g2 = G.topLeftCorner<2, 2>();
+          const double det = g2.determinant();
+          if (!(std::abs(det) > 1e-24 * g2.squaredNorm())) continue;
+          mu.head<2>() = g2.inverse() * r.head<2>();
+        } else {
+          const double det = G.determinant();
+          if (!(std::abs(det) > 1e-24 * std::pow(G.norm(), 3))) continue;
+          mu = G.inverse() * r;
+        }
+        if (!mu.allFinite() || mu.head(m).minCoeff() < 0 || mu.head(m).sum() > 1) continue;
+        x = w0 + A * mu;
+      }
+      if (x.norm() < best) {
+        best = x.norm();
+        best_mask = mask;
+        best_x = x;
+      }
+    }
+    Simplex kept;
+    for (int i = 0; i < n; ++i)
+      if (best_mask >> i & 1) kept.p[kept.n++] = W.p[i];
+    W = kept;
+    return best_x;
+  }
+
+  /// Appends k1 to keys, with keys between the last one and it while turn_excess is above
+  /// target (exact poses at the middles).
+  void refine(const qmotion::Motion& m, std::vector<Keyframe>& keys, const Keyframe& k1,
+              double target, int depth) const {
+    const Keyframe k0 = keys.back();
+    if (depth < 40 && turn_excess(k0, k1) > target) {
+      const Keyframe mid = exact_key(m, 0.5 * (k0.t + k1.t), &k0);
+      if (mid.t > k0.t && mid.t < k1.t) {
+        refine(m, keys, mid, target, depth + 1);
+        Keyframe end = k1;
+        if (end.rotation.coeffs().dot(keys.back().rotation.coeffs()) < 0)
+          end.rotation.coeffs() = -end.rotation.coeffs();
+        refine(m, keys, end, target, depth + 1);
+        return;
+      }
+    }
+    keys.push_back(k1);
+  }
+
+  int build(int lo, int hi) {
+    Node nd;
+    nd.lo = lo;
+    nd.hi = hi;
+    nd.key = (lo + hi) / 2;
+    const Map& Mm = keys_[static_cast<std::size_t>(nd.key)];
+    double lever = 0, delta = 0;
+    for (int j = lo; j <= hi; ++j)
+      lever = std::max(lever, detail::lever_norm(keys_[static_cast<std::size_t>(j)] - Mm, rho_));
+    for (int k = lo; k < hi; ++k) delta = std::max(delta, delta_[static_cast<std::size_t>(k)]);
+    nd.reach = (lever + delta) * (1 + 1e-12);
+    nd.centre = Mm.col(0) + Mm.rightCols<3>() * ball_centre_;
+    nd.radius = ball_radius_ + nd.reach;
+    const int at = static_cast<int>(nodes_.size());
+    nodes_.push_back(nd);
+    if (hi - lo > 1) {
+      const int mid = (lo + hi) / 2;
+      const int c0 = build(lo, mid), c1 = build(mid, hi);
+      nodes_[static_cast<std::size_t>(at)].child[0] = c0;
+      nodes_[static_cast<std::size_t>(at)].child[1] = c1;
+    }
+    return at;
+  }
+
+  const Body& body_;
+  double rho_;
+  Eigen::Vector3d ball_centre_ = Eigen::Vector3d::Zero();
+  double ball_radius_ = 0;
+  std::vector<Map> keys_;
+  std::vector<double> delta_;
+  double largest_ = 0, rounding_ = 0;
+  std::vector<Node> nodes_;
+};
+
+}  // namespace qmotion::sweep
