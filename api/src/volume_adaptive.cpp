@@ -36,6 +36,12 @@ namespace {
 /// (0.5: 449 250 at T = 0.05 mm, 0.8: 239 874, 0.88: 219 584, 0.94: 224 402).
 constexpr double kLevel = 0.85;
 
+/// A point's certified distance to V from its query: the placement's, with rounding (relative
+/// 1e-12 of the scene).
+double certified_distance(const sweep::VolumeDistance& d, double scale) {
+  return std::max(d.signed_upper, 0.0) + 1e-12 * scale;
+}
+
 /// A vertex of the surface: the tetrahedra's edge it lies on, by its ends' keys (lower first).
 struct EdgeKey {
   OctKey a = 0, b = 0;
@@ -79,7 +85,7 @@ class Mesher {
       octree_.balance(fresh);
       classify();
       // Only the leaves whose tetrahedra may have changed are made again: new ones, and
-      // those next to a split cell (Octree::touched).
+      // those next to a split cell (Octree::touching).
       std::vector<Leaf*> dirty = dirty_leaves(fresh);
       evaluate(dirty);
       for_each(dirty, [&](Leaf& L) { L.tris = triangles(L); });
@@ -108,22 +114,23 @@ class Mesher {
     }
   }
 
-  /// The roots' edge: they hold the box (which holds V) with a margin where every value
-  /// exceeds tau, at most 32 along an axis.
+  /// The margin about the box (which holds V) where every value exceeds tau.
+  static double pad(const Eigen::AlignedBox3d& box, double T) {
+    return 4 * T + 1e-3 * box.diagonal().norm();
+  }
+  /// The roots' edge: they hold the box and its margin, at most 32 along an axis.
   static double root_edge(const Eigen::AlignedBox3d& box, double T) {
-    const double pad = 4 * T + 1e-3 * box.diagonal().norm();
-    return (box.sizes() + Eigen::Vector3d::Constant(2 * pad)).maxCoeff() / 31.5;
+    return (box.sizes() + Eigen::Vector3d::Constant(2 * pad(box, T))).maxCoeff() / 31.5;
   }
 
  private:
   static Octree make_octree(const Eigen::AlignedBox3d& box, double T) {
-    const double pad = 4 * T + 1e-3 * box.diagonal().norm();
-    const Eigen::Vector3d size = box.sizes() + Eigen::Vector3d::Constant(2 * pad);
+    const Eigen::Vector3d size = box.sizes() + Eigen::Vector3d::Constant(2 * pad(box, T));
     const double root = root_edge(box, T);
     std::array<long, 3> n{};
     for (int a = 0; a < 3; ++a)
       n[static_cast<std::size_t>(a)] = std::max(1L, static_cast<long>(std::ceil(size(a) / root)));
-    return Octree(box.min() - Eigen::Vector3d::Constant(pad), root, n);
+    return Octree(box.min() - Eigen::Vector3d::Constant(pad(box, T)), root, n);
   }
 
   template <typename F>
@@ -209,7 +216,7 @@ class Mesher {
     all.erase(std::unique(all.begin(), all.end()), all.end());
     std::vector<Value> v(all.size());
     tbb::parallel_for(std::size_t(0), all.size(), [&](std::size_t i) {
-      const OctPoint p = point(all[i]);
+      const OctPoint p = Octree::vertex_point(all[i]);
       // Deeper than twice the coarsest cell the corner belongs to, the depth is not needed.
       const double reach = 2 * static_cast<double>(Octree::alignment(p)) * octree_.unit();
       const auto d = tree_.query(octree_.position(p), -reach);
@@ -223,14 +230,10 @@ class Mesher {
     for (std::size_t i = 0; i < all.size(); ++i) value_.emplace(all[i], v[i]);
   }
 
-  static OctPoint point(OctKey k) {
-    const OctKey m = (OctKey(1) << 21) - 1;
-    return {static_cast<long>(k >> 42 & m), static_cast<long>(k >> 21 & m),
-            static_cast<long>(k & m)};
-  }
   Eigen::Vector3d on_edge(const EdgeKey& e) const {
     const double va = value_.at(e.a).v, vb = value_.at(e.b).v;
-    const Eigen::Vector3d pa = octree_.position(point(e.a)), pb = octree_.position(point(e.b));
+    const Eigen::Vector3d pa = octree_.position(Octree::vertex_point(e.a)),
+                          pb = octree_.position(Octree::vertex_point(e.b));
     return pa + (tau_ - va) / (vb - va) * (pb - pa);
   }
 
@@ -345,7 +348,7 @@ class Mesher {
     L.ok = false;
     for (const Tri& t : L.tris)
       for (const EdgeKey& e : t)
-        if (!(std::max(bound_.at(e).d.signed_upper, 0.0) + 1e-12 * scale_ + e_ <= T_)) return;
+        if (!(certified_distance(bound_.at(e).d, scale_) + e_ <= T_)) return;
     for (const Tri& t : L.tris) {
       std::array<Eigen::Vector3d, 3> p;
       for (int i = 0; i < 3; ++i)
@@ -371,16 +374,14 @@ class Mesher {
       }
       return it->second;
     };
-    std::vector<Leaf*> near;
-    for (auto& [k, L] : leaves_) near.push_back(&L);
     bool inside_point = false;
     out.smallest_cell = HUGE_VAL;
-    for (Leaf* L : near) {
-      for (const Tri& t : L->tris)
+    for (const auto& [k, L] : leaves_) {
+      for (const Tri& t : L.tris)
         out.triangles.push_back({number(t[0]), number(t[1]), number(t[2])});
-      out.inside_volume += L->inside;
-      if (L->tris.empty()) continue;
-      const double s = static_cast<double>(Octree::size(Octree::level(L->key))) * octree_.unit();
+      out.inside_volume += L.inside;
+      if (L.tris.empty()) continue;
+      const double s = static_cast<double>(Octree::size(Octree::level(k))) * octree_.unit();
       out.smallest_cell = std::min(out.smallest_cell, s);
       out.largest_cell = std::max(out.largest_cell, s);
       ++out.cells;
@@ -449,7 +450,6 @@ EnclosingMesh adaptive_mesh(const Motion& motion, const sweep::SweptVolumeTree& 
   for (int attempt = 0;; ++attempt) {
     const double eps = std::max(1e-6 * T, 8 * e * std::pow(4.0, attempt));
     m = Mesher(motion, tree, hulls, box, T, kLevel * T + e, e, eps).run();
-    refuse_size(motion, T, m.triangles.size());
     m.enclosed = enclosed_volume(m.vertices, m.triangles, box.center());
     m.rounding = e;
     if (rounding.float32) {
@@ -465,8 +465,7 @@ EnclosingMesh adaptive_mesh(const Motion& motion, const sweep::SweptVolumeTree& 
                   motion.label() + ": the adaptive mesh is not closed as written");
   }
   for (const auto& d : m.at)
-    m.distance_bound = std::max(m.distance_bound, std::max(d.signed_upper, 0.0));
-  m.distance_bound += 1e-12 * scale;
+    m.distance_bound = std::max(m.distance_bound, certified_distance(d, scale));
   if (!(m.distance_bound <= T))
     throw Error(Errc::numerical_failure, motion.label() +
                                              ": a vertex lies farther than the tolerance " +

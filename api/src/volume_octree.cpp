@@ -62,8 +62,7 @@ void Octree::touching(OctKey x, std::vector<OctKey>& out) const {
   }
   for (int d = 0; d < 27; ++d) {
     if (d == 13) continue;
-    const OctPoint q{o[0] + (d % 3 - 1) * s, o[1] + (d / 3 % 3 - 1) * s, o[2] + (d / 9 - 1) * s};
-    const OctKey n = find(q, l);
+    const OctKey n = find(beside(o, s, d), l);
     if (n != kNone && level(n) <= l) out.push_back(n);
   }
 }
@@ -79,8 +78,7 @@ void Octree::balance(std::vector<OctKey> work) {
     const OctPoint o = corner(c);
     for (int d = 0; d < 27; ++d) {
       if (d == 13) continue;  // the cell itself
-      const OctPoint q{o[0] + (d % 3 - 1) * s, o[1] + (d / 3 % 3 - 1) * s, o[2] + (d / 9 - 1) * s};
-      const OctKey n = find(q, l - 1);
+      const OctKey n = find(beside(o, s, d), l - 1);
       if (n != kNone && level(n) < l - 1) {
         split(n, &work);
         work.push_back(c);

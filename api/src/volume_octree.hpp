@@ -50,6 +50,12 @@ class Octree {
   static OctKey vertex_key(const OctPoint& p) {
     return (OctKey(p[0]) << 42) | (OctKey(p[1]) << 21) | OctKey(p[2]);
   }
+  /// vertex_key's point.
+  static OctPoint vertex_point(OctKey k) {
+    const OctKey m = (OctKey(1) << 21) - 1;
+    return {static_cast<long>(k >> 42 & m), static_cast<long>(k >> 21 & m),
+            static_cast<long>(k & m)};
+  }
   Eigen::Vector3d position(const OctPoint& p) const {
     return origin_ + unit_ * Eigen::Vector3d(static_cast<double>(p[0]), static_cast<double>(p[1]),
                                              static_cast<double>(p[2]));
@@ -84,6 +90,11 @@ class Octree {
   void tets(OctKey c, std::vector<Tet>& out) const;
 
  private:
+  /// The lowest corner of the cell of edge s beside the one at o in direction d (0 to 26,
+  /// 13 the cell itself: d % 3, d / 3 % 3, d / 9 along the axes, 1 for none).
+  static OctPoint beside(const OctPoint& o, long s, int d) {
+    return {o[0] + (d % 3 - 1) * s, o[1] + (d / 3 % 3 - 1) * s, o[2] + (d / 9 - 1) * s};
+  }
   bool inside(const OctPoint& p) const {
     for (int a = 0; a < 3; ++a)
       if (p[a] < 0 || p[a] >= extent_[a]) return false;

@@ -236,9 +236,10 @@ class HullPieces {
         if (v.dot(tri[static_cast<std::size_t>(i)]) < v.dot(tri[static_cast<std::size_t>(lo)]))
           lo = i;
       const Eigen::Vector3d w = tri[static_cast<std::size_t>(lo)] - piece_support(k, v);
+      // d . w: the triangle's least extent along d less C's support value there (the
+      // support point above is C's farthest along v, so along d).
       const Eigen::Vector3d d = v / vn;
-      const double low =
-          d.dot(tri[static_cast<std::size_t>(lo)]) - std::max(support(k, d), support(k + 1, d));
+      const double low = d.dot(w);
       if (low > need) {
         dirs.add(d, tri);
         return true;
@@ -315,10 +316,7 @@ class HullPieces {
       const Keyframe mid = exact_key(m, 0.5 * (k0.t + k1.t), &k0);
       if (mid.t > k0.t && mid.t < k1.t) {
         refine(m, keys, mid, target, depth + 1);
-        Keyframe end = k1;
-        if (end.rotation.coeffs().dot(keys.back().rotation.coeffs()) < 0)
-          end.rotation.coeffs() = -end.rotation.coeffs();
-        refine(m, keys, end, target, depth + 1);
+        refine(m, keys, k1, target, depth + 1);
         return;
       }
     }
