@@ -21,7 +21,8 @@ Command add_toolpath(CLI::App& app) {
       "written and, on a 5-axis machine, for its linear interpolation of its axes (APT, CSV, "
       "G-code)");
   struct Options {
-    std::string motion, point, axis = "0,0,1", chord_tol, angle_tol, max_step, feed, limits;
+    std::string motion, point, axis = "0,0,1", chord_tol, angle_tol, max_step, feed, limits,
+                               controller_tol;
     qmotion::ToolpathOptions options;
   };
   auto o = std::make_shared<Options>();
@@ -42,7 +43,8 @@ Command add_toolpath(CLI::App& app) {
                   "branch nearer the previous block, C unwrapped)");
   sub->add_option("--machine", o->options.machine_file,
                   "G-code: a machine file (JSON: two rotary axes on the table or the head, with "
-                  "directions and pivots, optional velocity limits) instead of --rotary");
+                  "directions and pivots; optional velocity limits, travel and accelerations) "
+                  "instead of --rotary");
   sub->add_flag("--c-hold", o->options.c_hold,
                 "--rotary/--machine: keep the previous angle of the axis that is undefined where "
                 "the tool lies along it (C where the axis is vertical; else refused)");
@@ -52,6 +54,14 @@ Command add_toolpath(CLI::App& app) {
   sub->add_option("--axis-limits", o->limits,
                   "With inverse-time: velocity limits X=v,Y=v,Z=v,A=v,… (output unit or degrees "
                   "per minute); blocks slow down so that no axis exceeds its limit");
+  sub->add_option("--dialect", o->options.dialect,
+                  "G-code: the controller's words: linuxcnc (default), fanuc (default with "
+                  "--nurbs) or siemens; every program commands its exact-path mode (G61, or "
+                  "G60 G601) before the first feed move");
+  sub->add_option("--controller-tol", o->controller_tol,
+                  "G-code G1, 3-axis: the part of --chord-tol left to the controller's blending "
+                  "(LinuxCNC G64 P Q, Siemens G642 CTOL), less than half of it; default 0 "
+                  "(exact path)");
   sub->add_flag("--nurbs", o->options.nurbs,
                 "G-code: Fanuc-style G06.2 NURBS blocks of degree <= 3 instead of G1 moves: the "
                 "exact trajectory where its degree allows, else a cubic fit, within --chord-tol "
@@ -73,6 +83,9 @@ Command add_toolpath(CLI::App& app) {
             if (!o->max_step.empty())
               opt.max_step = io::parse_number_text(o->max_step, "--max-step").value;
             if (!o->feed.empty()) opt.feed = io::parse_number_text(o->feed, "--feed").value;
+            if (!o->controller_tol.empty())
+              opt.controller_tol =
+                  io::parse_number_text(o->controller_tol, "--controller-tol").value;
             if (!o->limits.empty())
               opt.axis_limits = io::parse_axis_limits(o->limits, "--axis-limits");
             const auto tp = qmotion::toolpath(io::load_motion(o->motion), opt);

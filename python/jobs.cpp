@@ -10,8 +10,11 @@ py::object toolpath_call(const Motion& motion, const std::string& path, const py
                          double max_step, double feed, bool arc_length, const std::string& rotary,
                          bool c_hold, const std::string& units, bool nurbs,
                          const std::string& machine, const std::string& feed_mode,
-                         const std::map<std::string, double>& axis_limits) {
+                         const std::map<std::string, double>& axis_limits,
+                         const std::string& dialect, double controller_tol) {
   ToolpathOptions o;
+  o.dialect = dialect;
+  o.controller_tol = controller_tol;
   o.machine_file = machine;
   o.feed_mode = feed_mode;
   for (const auto& [word, v] : axis_limits) {
@@ -138,7 +141,9 @@ void bind_jobs(py::module_& m) {
       "(.apt/.cls, .csv, .nc/.ngc; rotary='ac' or 'bc' for a table-tilting machine, or machine= "
       "a machine file, the bounds then covering the machine's linear interpolation of its axes; "
       "feed_mode='inverse-time' for G93 with axis_limits={'X': 20000, 'C': 7200}; nurbs=True "
-      "for G06.2 NURBS blocks of degree <= 3 with a certified deviation). Every bound holds for "
+      "for G06.2 NURBS blocks of degree <= 3 with a certified deviation; dialect='linuxcnc', "
+      "'fanuc' or 'siemens' for the controller's words and path mode, controller_tol for the "
+      "part of chord_tol a 3-axis program leaves to its blending). Every bound holds for "
       "the numbers as written. Returns the report dict: points, path_length, "
       "machining_time_min, max_chord_deviation_bound, rounding_bound, ... (with a machine: "
       "machine, machine_interpolation_bound, ...; with nurbs: degree, control_points, spans, "
@@ -149,10 +154,11 @@ void bind_jobs(py::module_& m) {
          const py::object& axis, double chord_tol, double angle_tol, double max_step, double feed,
          bool arc_length, const std::string& rotary, bool c_hold, const std::string& units,
          bool nurbs, const std::string& machine, const std::string& feed_mode,
-         const std::map<std::string, double>& axis_limits) {
+         const std::map<std::string, double>& axis_limits, const std::string& dialect,
+         double controller_tol) {
         return toolpath_call(p.motion, path, point, axis, chord_tol, angle_tol, max_step, feed,
                              arc_length, rotary, c_hold, units, nurbs, machine, feed_mode,
-                             axis_limits);
+                             axis_limits, dialect, controller_tol);
       },
       py::arg("motion"), py::arg("path"), py::arg("point"),
       py::arg("axis") = std::vector<double>{0, 0, 1}, py::arg("chord_tol"),
@@ -160,7 +166,7 @@ void bind_jobs(py::module_& m) {
       py::arg("arc_length") = false, py::arg("rotary") = "", py::arg("c_hold") = false,
       py::arg("units") = "", py::arg("nurbs") = false, py::arg("machine") = "",
       py::arg("feed_mode") = "", py::arg("axis_limits") = std::map<std::string, double>{},
-      toolpath_doc);
+      py::arg("dialect") = "", py::arg("controller_tol") = 0.0, toolpath_doc);
   m.def(
       "animate",
       [](const PyMotion& p, const std::string& path, const std::string& body, const py::object& tol,

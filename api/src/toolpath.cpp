@@ -1,10 +1,12 @@
 // api/src/toolpath.cpp: `qmotion toolpath`: the certified sampler, what each format writes,
 // the machine's axes, and the feeds (docs/cam.md).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <functional>
 #include <qmotion/api/toolpath.hpp>
+#include <qmotion/cam/controller.hpp>
 #include <qmotion/io/atomic_file.hpp>
 #include <qmotion/io/machine_file.hpp>
 #include <qmotion/io/progress.hpp>
@@ -83,6 +85,30 @@ void check_options(const ToolpathOptions& o, CamFormat f) {
     if (!(v > 0) || !std::isfinite(v))
       throw Error(Errc::invalid_input,
                   "--axis-limits " + std::string(1, word) + ": expected a positive velocity limit");
+  if (!o.dialect.empty()) {
+    if (f != CamFormat::gcode)
+      throw Error(Errc::invalid_input, "--dialect is for G-code output (.nc, .ngc)");
+    if (o.nurbs && cam::parse_dialect(o.dialect, "--dialect") != cam::Dialect::fanuc)
+      throw Error(Errc::invalid_input, "--dialect " + o.dialect +
+                                           ": --nurbs writes Fanuc's G06.2 blocks; use "
+                                           "--dialect fanuc or none");
+  }
+  if (!(o.controller_tol >= 0) || !std::isfinite(o.controller_tol))
+    throw Error(Errc::invalid_input, "--controller-tol: expected a length >= 0 (0: exact path)");
+  if (o.controller_tol > 0) {
+    if (f != CamFormat::gcode || o.nurbs)
+      throw Error(Errc::invalid_input,
+                  "--controller-tol is for G-code G1 programs (.nc, .ngc without --nurbs)");
+    if (machines)
+      throw Error(Errc::invalid_input,
+                  "--controller-tol is for 3-axis programs: a controller's blending of rotary axes "
+                  "bounds no distance at the tool tip, so machine programs run in exact path "
+                  "mode");
+    if (!(o.controller_tol < 0.5 * o.chord_tol))
+      throw Error(Errc::invalid_input,
+                  "--controller-tol: expected less than half of --chord-tol (the chords need "
+                  "the rest)");
+  }
 }
 
 /// The machine of the options in the output unit (its pivots converted), with the velocity
@@ -107,6 +133,11 @@ std::optional<cam::Machine> resolve_machine(const ToolpathOptions& o, const std:
   if (m) {
     const double f = unit_factor(m->units, units);
     for (auto& ax : m->axes) ax.pivot *= f;
+    for (std::size_t i = 0; i < 3; ++i) {
+      m->travel[i].min *= f;
+      m->travel[i].max *= f;
+      m->acceleration[i] *= f;
+    }
     m->units = units;
   }
   std::string words = "XYZ";
@@ -180,6 +211,174 @@ std::vector<std::pair<double, int>> inverse_time(Toolpath& tp, const std::vector
   return feeds;
 }
 
+/// The output unit: --units, else the motion's; APT and G-code know only mm and inches, so
+/// other units become mm there unless asked for (then refused). A tolerance is certified
+/// down to ten units of the last printed decimal (--nurbs prints 6, as G-code does).
+std::string output_unit(const ToolpathOptions& o, CamFormat f, const std::string& munits) {
+  std::string units;
+  if (!o.units.empty()) {
+    units = canonical_unit(o.units, "--units");
+    if (f != CamFormat::csv && units != "mm" && units != "in")
+      throw Error(Errc::invalid_input, "--units " + o.units +
+                                           ": APT and G-code declare millimetres or inches only "
+                                           "(mm, in); CSV takes any unit");
+  } else {
+    units = f == CamFormat::csv ? munits : munits == "in" ? "in" : "mm";
+  }
+  const int point_digits = decimals(f).first;
+  const double least = 10 * std::pow(10.0, -point_digits);
+  if (o.chord_tol < least) {
+    std::ostringstream m;
+    m << "--chord-tol " << o.chord_tol << ": "
+      << (o.nurbs               ? "--nurbs"
+          : f == CamFormat::csv ? "CSV"
+                                : "the file")
+      << " writes " << point_digits << " decimals, so it certifies tolerances from " << least
+      << " (in the output unit)";
+    throw Error(Errc::invalid_input, m.str());
+  }
+  return units;
+}
+
+/// The arc length of the exact trajectory up to every sample (output unit), and the written
+/// chords (and what the machine runs) measured against it into tp; the samples scaled from
+/// the motion's unit to the output's (k).
+std::vector<double> measure(Toolpath& tp, const cam::ToolTrajectories& src, double k) {
+  std::vector<double> arc{0.0};
+  std::vector<Eigen::Vector3d> exact(33);
+  for (std::size_t i = 0; i + 1 < tp.samples.size(); ++i) {
+    if (i % 256 == 0)
+      report_progress("toolpath",
+                      0.8 + 0.2 * static_cast<double>(i) / static_cast<double>(tp.samples.size()));
+    const double t0 = tp.samples[i].t, t1 = tp.samples[i + 1].t;
+    const cam::WrittenEnd &w0 = tp.samples[i].written, &w1 = tp.samples[i + 1].written;
+    arc.push_back(arc.back() + arc_length(src, t0, t1) * k);
+    for (int s = 0; s <= 32; ++s) {
+      exact[static_cast<std::size_t>(s)] = src.exact_point(t0 + (t1 - t0) * s / 32);
+      tp.max_chord_measured = std::max(tp.max_chord_measured,
+                                       cam::detail::point_segment_distance(
+                                           exact[static_cast<std::size_t>(s)], w0.point, w1.point));
+    }
+    if (tp.machine)
+      for (int s = 1; s < 16; ++s) {
+        cam::MachineAxes q;
+        for (std::size_t j = 0; j < 5; ++j)
+          q[j] = w0.machine[j] + (w1.machine[j] - w0.machine[j]) * s / 16;
+        const Eigen::Vector3d x = cam::forward_kinematics(*tp.machine, q).first / k;
+        double d = HUGE_VAL;
+        for (std::size_t e = 0; e + 1 < exact.size(); ++e)
+          d = std::min(d, cam::detail::point_segment_distance(x, exact[e], exact[e + 1]));
+        tp.tip_measured = std::max(tp.tip_measured, d);
+        tp.machine_measured = std::max(
+            tp.machine_measured, (x - (w0.point + (w1.point - w0.point) * (s / 16.0))).norm());
+      }
+  }
+  tp.path_length = arc.back();
+  report_progress("toolpath", 1.0);
+  tp.max_chord_measured *= k;
+  tp.machine_measured *= k;
+  tp.tip_measured *= k;
+  for (auto& s : tp.samples) {
+    s.point *= k;
+    s.written.point *= k;
+    if (tp.machine) tp.machine_axes.push_back(s.written.machine);
+  }
+  return arc;
+}
+
+/// The CSV (t, x, y, z, i, j, k[, s]) or APT CL data of tp's samples into os.
+void write_points(const Toolpath& tp, const ToolpathOptions& o, bool csv,
+                  const std::vector<double>& arc, std::ostringstream& os) {
+  const auto [point_digits, axis_digits] = decimals(csv ? CamFormat::csv : CamFormat::apt);
+  if (csv) {
+    os << "t,x,y,z,i,j,k" << (o.arc_length ? ",s" : "") << "\n";
+    for (std::size_t i = 0; i < tp.samples.size(); ++i) {
+      const auto& p = tp.samples[i];
+      os << num(p.t, 12);
+      for (int c = 0; c < 3; ++c) os << "," << num(p.written.point(c), point_digits);
+      for (int c = 0; c < 3; ++c) os << "," << num(p.written.axis(c), axis_digits);
+      if (o.arc_length) os << "," << num(arc[i], 9);
+      os << "\n";
+    }
+    return;
+  }
+  bool multax = false;
+  for (const auto& s : tp.samples)
+    multax = multax || cam::detail::angle_between(s.axis, tp.samples.front().axis) > 1e-12;
+  apt_line(os, "PARTNO/QMOTION TOOLPATH");
+  apt_line(os, tp.units == "in" ? "UNITS/INCHES" : "UNITS/MM");
+  if (multax) apt_line(os, "MULTAX/ON");
+  apt_line(os, "FEDRAT/" + num(o.feed, 4));
+  for (const auto& s : tp.samples) {
+    const cam::WrittenEnd& w = s.written;
+    std::string g = "GOTO/" + num(w.point(0)) + "," + num(w.point(1)) + "," + num(w.point(2));
+    if (multax)
+      for (int c = 0; c < 3; ++c) g += "," + num(w.axis(c), axis_digits);
+    apt_line(os, g);
+  }
+  apt_line(os, "FINI");
+}
+
+/// The sampler from the first block's branch within travel nearer the machine's zero, and
+/// from the other one when an axis leaves its travel on the way. With travel, tp.branch
+/// says whether the first block took the solution nearer the machine's zero (of both,
+/// travel aside) or the other one; k: the motion's unit to the output's.
+cam::SampledToolpath sample_within_travel(const cam::ToolTrajectories& src,
+                                          const cam::SamplerOptions& so, int& first_branch,
+                                          double k, Toolpath& tp) {
+  bool limited = false;
+  if (tp.machine)
+    for (const auto& tr : tp.machine->travel) limited = limited || tr.limited();
+  auto label = [&](const cam::SampledToolpath& out) {
+    if (!limited) return;
+    cam::Machine free = *tp.machine;
+    free.travel = {};
+    const cam::ToolpathSample& s0 = out.samples.front();
+    const cam::MachineAxes q =
+        cam::inverse_kinematics(free, s0.point * k, s0.axis, {}, true, "", 0);
+    auto same = [](double u, double v) { return std::abs(std::remainder(u - v, 360.0)) < 1e-6; };
+    tp.branch =
+        same(q[3], s0.written.machine[3]) && same(q[4], s0.written.machine[4]) ? "nearer" : "other";
+  };
+  first_branch = 0;
+  try {
+    cam::SampledToolpath out = cam::sample_toolpath(src.h, src.d, so);
+    label(out);
+    return out;
+  } catch (const cam::TravelError& e) {
+    if (std::string(e.what()).find("neither branch") != std::string::npos) throw;
+    first_branch = 1;
+    try {
+      cam::SampledToolpath out = cam::sample_toolpath(src.h, src.d, so);
+      label(out);
+      return out;
+    } catch (const cam::TravelError& other) {
+      throw Error(Errc::invalid_input,
+                  std::string(e.what()) + "; starting on the other branch: " + other.what());
+    }
+  }
+}
+
+/// The G1 program's time with the machine's accelerations (cam::block_minutes): every
+/// block at its velocity-only time (the feed along the exact arc, or its inverse-time F)
+/// and its axes' displacements.
+void machining_time_with_acceleration(Toolpath& tp, const std::vector<double>& arc) {
+  std::array<double, 5> accel{HUGE_VAL, HUGE_VAL, HUGE_VAL, HUGE_VAL, HUGE_VAL};
+  if (tp.machine) accel = tp.machine->acceleration;
+  tp.machining_time_accel_min = 0;
+  for (std::size_t i = 0; i + 1 < tp.samples.size(); ++i) {
+    const double minutes =
+        tp.block_minutes.empty() ? (arc[i + 1] - arc[i]) / tp.feed : tp.block_minutes[i];
+    std::array<double, 5> delta{};
+    for (std::size_t j = 0; j < 5; ++j)
+      delta[j] = tp.machine ? tp.machine_axes[i + 1][j] - tp.machine_axes[i][j]
+                 : j < 3    ? tp.samples[i + 1].written.point(static_cast<int>(j)) -
+                               tp.samples[i].written.point(static_cast<int>(j))
+                         : 0.0;
+    tp.machining_time_accel_min += cam::block_minutes(minutes, delta, accel);
+  }
+}
+
 }  // namespace
 
 json Toolpath::report() const {
@@ -204,7 +403,9 @@ json Toolpath::report() const {
                 {"machining_time_min", machining_time_min},
                 {"chord_tolerance", chord_tol},
                 {"max_deviation_bound", nurbs->max_deviation_bound},
-                {"max_deviation_measured", nurbs->max_deviation_measured}};
+                {"max_deviation_measured", nurbs->max_deviation_measured},
+                {"dialect", dialect},
+                {"path_mode", path_mode}};
   }
   json j{{"path", path},
          {"points", samples.size()},
@@ -220,6 +421,17 @@ json Toolpath::report() const {
          {"rounding_bound", rounding_bound},
          {"angle_tolerance_deg", angle_tol_deg},
          {"max_angle_deviation_bound_deg", max_angle_bound_deg}};
+  if (!path_mode.empty()) {
+    j["dialect"] = dialect;
+    j["path_mode"] = path_mode;
+    j["controller_tolerance"] = controller_tol;
+    j["max_path_deviation_bound"] = max_chord_bound + controller_tol;
+    j["machining_time_with_acceleration_min"] = machining_time_accel_min;
+  }
+  if (fit_bound > 0 || fit_measured > 0) {
+    j["fit_deviation_bound"] = fit_bound;
+    j["fit_deviation_measured"] = fit_measured;
+  }
   if (machine) {
     json axes = json::array();
     for (const auto& ax : machine->axes)
@@ -228,6 +440,16 @@ json Toolpath::report() const {
                       {"direction", {ax.direction(0), ax.direction(1), ax.direction(2)}},
                       {"pivot", {ax.pivot(0), ax.pivot(1), ax.pivot(2)}}});
     j["machine"] = {{"name", machine->name}, {"axes", axes}};
+    json travel = json::object(), accel = json::object();
+    for (std::size_t i = 0; i < 5; ++i) {
+      const std::string w(1, machine->word(i));
+      if (machine->travel[i].limited())
+        travel[w] = {machine->travel[i].min, machine->travel[i].max};
+      if (std::isfinite(machine->acceleration[i])) accel[w] = machine->acceleration[i];
+    }
+    if (!travel.empty()) j["machine"]["travel"] = travel;
+    if (!accel.empty()) j["machine"]["acceleration"] = accel;
+    if (!branch.empty()) j["branch"] = branch;
     j["machine_interpolation_bound"] = machine_bound;
     j["machine_interpolation_angle_bound_deg"] = machine_angle_bound_deg;
     j["machine_interpolation_measured"] = machine_measured;
@@ -247,41 +469,26 @@ Toolpath toolpath(const Motion& motion, const ToolpathOptions& o) {
   check_options(o, f);
   const std::string& munits = motion.units();
   Toolpath tp;
-  // The output unit: --units, else the motion's; APT and G-code know only mm and inches,
-  // so other units become mm there unless asked for (then refused).
-  if (!o.units.empty()) {
-    tp.units = canonical_unit(o.units, "--units");
-    if (f != CamFormat::csv && tp.units != "mm" && tp.units != "in")
-      throw Error(Errc::invalid_input, "--units " + o.units +
-                                           ": APT and G-code declare millimetres or inches only "
-                                           "(mm, in); CSV takes any unit");
-  } else {
-    tp.units = f == CamFormat::csv ? munits : munits == "in" ? "in" : "mm";
-  }
+  tp.units = output_unit(o, f, munits);
   tp.machine = resolve_machine(o, tp.units, tp.axis_limits);
   if (!o.feed_mode.empty()) tp.feed_mode = o.feed_mode;
   if (tp.feed_mode != "inverse-time") tp.axis_limits.clear();  // a file's: the controller's
   const double k = unit_factor(munits, tp.units);              // motion unit -> output unit
   const double tol = o.chord_tol / k;                          // in the motion's unit
   const auto [point_digits, axis_digits] = decimals(f);
-  // A tolerance is certified down to ten units of the last printed decimal (--nurbs prints
-  // 6 decimals, as G-code does).
-  const double least = 10 * std::pow(10.0, -point_digits);
-  if (o.chord_tol < least) {
-    std::ostringstream m;
-    m << "--chord-tol " << o.chord_tol << ": "
-      << (o.nurbs               ? "--nurbs"
-          : f == CamFormat::csv ? "CSV"
-                                : "the file")
-      << " writes " << point_digits << " decimals, so it certifies tolerances from " << least
-      << " (in the output unit)";
-    throw Error(Errc::invalid_input, m.str());
-  }
   const cam::ToolTrajectories src = cam::tool_trajectories(motion, o.point, o.axis, tol);
   tp.chord_tol = o.chord_tol;
   tp.angle_tol_deg = o.angle_tol_deg;
   tp.feed = o.feed;
   tp.path = o.output;
+  tp.dialect =
+      cam::dialect_name(o.dialect.empty() ? o.nurbs ? cam::Dialect::fanuc : cam::Dialect::linuxcnc
+                                          : cam::parse_dialect(o.dialect, "--dialect"));
+  tp.controller_tol = o.controller_tol;
+  if (f == CamFormat::gcode)
+    tp.path_mode =
+        cam::path_mode(cam::parse_dialect(tp.dialect, "--dialect"), o.controller_tol, tp.units)
+            .words;
   if (o.nurbs) {
     std::ostringstream os;
     nurbs_toolpath(tp, src, k, tol, os);
@@ -290,13 +497,14 @@ Toolpath toolpath(const Motion& motion, const ToolpathOptions& o) {
     return tp;
   }
   cam::SamplerOptions so;
-  so.chord_tol = tol - src.fit_error;
+  so.chord_tol = tol - src.fit_error - o.controller_tol / k;
   // The fitted axis: its tip 100 units out is within fit_error of the exact one.
   const double fit_angle = std::asin(std::min(1.0, 2 * src.fit_error / 100));
   so.angle_tol = o.angle_tol_deg * kPi / 180 - fit_angle;
   if (o.max_step > 0) so.max_step = o.max_step / k;
   so.progress = [](double x) { report_progress("toolpath", 0.8 * x); };
   const std::optional<cam::Machine>& machine = tp.machine;
+  int first_branch = 0;  // of the branches within travel, the nearer to the machine's zero
   so.write = [&, pd = point_digits, ad = axis_digits](double t, const Eigen::Vector3d& p,
                                                       const Eigen::Vector3d& kd,
                                                       const cam::WrittenEnd* prev) {
@@ -305,8 +513,11 @@ Toolpath toolpath(const Motion& motion, const ToolpathOptions& o) {
       cam::MachineAxes q = cam::inverse_kinematics(
           *machine, p * k, kd, prev ? prev->machine : cam::MachineAxes{}, o.c_hold,
           (o.rotary.empty() ? "--machine " + machine->name : "--rotary " + o.rotary) +
-              " at t = " + std::to_string(t));
-      for (std::size_t i = 0; i < 5; ++i) q[i] = rounded(q[i], i < 3 ? pd : ad);
+              " at t = " + std::to_string(t),
+          prev ? -1 : first_branch);
+      for (std::size_t i = 0; i < 5; ++i)  // as printed, still within travel
+        q[i] = std::clamp(rounded(q[i], i < 3 ? pd : ad), machine->travel[i].min,
+                          machine->travel[i].max);
       const auto [pw, kw] = cam::forward_kinematics(*machine, q);
       w.point = pw / k;
       w.axis = kw;
@@ -325,54 +536,16 @@ Toolpath toolpath(const Motion& motion, const ToolpathOptions& o) {
           cam::interpolation_bound(*machine, w0.machine, w1.machine, w0.axis, w1.axis);
       return std::pair<double, double>(e / k, ea);
     };
-  const auto sampled = cam::sample_toolpath(src.h, src.d, so);
+  const auto sampled = sample_within_travel(src, so, first_branch, k, tp);
   tp.samples = sampled.samples;
   tp.max_chord_bound = (sampled.max_chord_bound + src.fit_error) * k;
+  tp.fit_bound = src.fit_error * k;
+  tp.fit_measured = src.fit_measured * k;
   tp.max_angle_bound_deg = (sampled.max_angle_bound + fit_angle) * 180 / kPi;
   tp.rounding_bound = sampled.max_rounding * k;
   tp.machine_bound = sampled.max_between * k;
   tp.machine_angle_bound_deg = sampled.max_between_angle * 180 / kPi;
-  // The arc length of the exact trajectory up to every sample, and the written chords (and
-  // what the machine runs) measured against it.
-  std::vector<double> arc{0.0};
-  std::vector<Eigen::Vector3d> exact(33);
-  for (std::size_t i = 0; i + 1 < tp.samples.size(); ++i) {
-    if (i % 256 == 0)
-      report_progress("toolpath",
-                      0.8 + 0.2 * static_cast<double>(i) / static_cast<double>(tp.samples.size()));
-    const double t0 = tp.samples[i].t, t1 = tp.samples[i + 1].t;
-    const cam::WrittenEnd &w0 = tp.samples[i].written, &w1 = tp.samples[i + 1].written;
-    arc.push_back(arc.back() + arc_length(src, t0, t1) * k);
-    for (int s = 0; s <= 32; ++s) {
-      exact[static_cast<std::size_t>(s)] = src.exact_point(t0 + (t1 - t0) * s / 32);
-      tp.max_chord_measured = std::max(tp.max_chord_measured,
-                                       cam::detail::point_segment_distance(
-                                           exact[static_cast<std::size_t>(s)], w0.point, w1.point));
-    }
-    if (machine)
-      for (int s = 1; s < 16; ++s) {
-        cam::MachineAxes q;
-        for (std::size_t j = 0; j < 5; ++j)
-          q[j] = w0.machine[j] + (w1.machine[j] - w0.machine[j]) * s / 16;
-        const Eigen::Vector3d x = cam::forward_kinematics(*machine, q).first / k;
-        double d = HUGE_VAL;
-        for (std::size_t e = 0; e + 1 < exact.size(); ++e)
-          d = std::min(d, cam::detail::point_segment_distance(x, exact[e], exact[e + 1]));
-        tp.tip_measured = std::max(tp.tip_measured, d);
-        tp.machine_measured = std::max(
-            tp.machine_measured, (x - (w0.point + (w1.point - w0.point) * (s / 16.0))).norm());
-      }
-  }
-  tp.path_length = arc.back();
-  report_progress("toolpath", 1.0);
-  tp.max_chord_measured *= k;
-  tp.machine_measured *= k;
-  tp.tip_measured *= k;
-  for (auto& s : tp.samples) {
-    s.point *= k;
-    s.written.point *= k;
-    if (machine) tp.machine_axes.push_back(s.written.machine);
-  }
+  const std::vector<double> arc = measure(tp, src, k);
   const bool inverse = tp.feed_mode == "inverse-time";
   std::vector<std::pair<double, int>> feeds;
   if (inverse) {
@@ -381,71 +554,12 @@ Toolpath toolpath(const Motion& motion, const ToolpathOptions& o) {
   } else {
     tp.machining_time_min = tp.path_length / tp.feed;
   }
+  if (f == CamFormat::gcode) machining_time_with_acceleration(tp, arc);
   std::ostringstream os;
-  bool multax = false;
-  for (const auto& s : tp.samples)
-    multax = multax || cam::detail::angle_between(s.axis, tp.samples.front().axis) > 1e-12;
-  switch (f) {
-    case CamFormat::csv: {
-      os << "t,x,y,z,i,j,k" << (o.arc_length ? ",s" : "") << "\n";
-      for (std::size_t i = 0; i < tp.samples.size(); ++i) {
-        const auto& p = tp.samples[i];
-        os << num(p.t, 12);
-        for (int c = 0; c < 3; ++c) os << "," << num(p.written.point(c), point_digits);
-        for (int c = 0; c < 3; ++c) os << "," << num(p.written.axis(c), axis_digits);
-        if (o.arc_length) os << "," << num(arc[i], 9);
-        os << "\n";
-      }
-      break;
-    }
-    case CamFormat::apt: {
-      apt_line(os, "PARTNO/QMOTION TOOLPATH");
-      apt_line(os, tp.units == "in" ? "UNITS/INCHES" : "UNITS/MM");
-      if (multax) apt_line(os, "MULTAX/ON");
-      apt_line(os, "FEDRAT/" + num(o.feed, 4));
-      for (const auto& s : tp.samples) {
-        const cam::WrittenEnd& w = s.written;
-        std::string g = "GOTO/" + num(w.point(0)) + "," + num(w.point(1)) + "," + num(w.point(2));
-        if (multax)
-          for (int c = 0; c < 3; ++c) g += "," + num(w.axis(c), axis_digits);
-        apt_line(os, g);
-      }
-      apt_line(os, "FINI");
-      break;
-    }
-    case CamFormat::gcode: {
-      os << "(qmotion toolpath: " << tp.samples.size() << " points, chord tolerance "
-         << num(o.chord_tol, 6) << " " << tp.units;
-      if (machine) {
-        os << ", machine " << machine->name << ", axes " << machine->axes[0].name
-           << machine->axes[1].name << ", linear interpolation of the machine axes certified";
-        for (const auto& [w, v] : tp.axis_limits) os << ", " << w << " <= " << num(v, 4);
-      }
-      os << ")\n";
-      os << (tp.units == "in" ? "G20" : "G21") << " G90 G17 " << (inverse ? "G93" : "G94") << "\n";
-      if (!inverse) os << "F" << num(o.feed, 4) << "\n";
-      for (std::size_t i = 0; i < tp.samples.size(); ++i) {
-        std::string words;
-        if (machine) {
-          const cam::MachineAxes& q = tp.machine_axes[i];
-          words = " X" + num(q[0]) + " Y" + num(q[1]) + " Z" + num(q[2]);
-          // The rotary words in alphabetical order, as controllers list them.
-          const int first = machine->axes[0].name < machine->axes[1].name ? 0 : 1;
-          for (int r : {first, 1 - first})
-            words += std::string(" ") + machine->axes[static_cast<std::size_t>(r)].name +
-                     num(q[static_cast<std::size_t>(3 + r)], axis_digits);
-        } else {
-          const Eigen::Vector3d& p = tp.samples[i].written.point;
-          words = " X" + num(p(0)) + " Y" + num(p(1)) + " Z" + num(p(2));
-        }
-        os << (i == 0 ? "G0" : "G1") << words;
-        if (inverse && i > 0) os << " F" << num(feeds[i - 1].first, feeds[i - 1].second);
-        os << "\n";
-      }
-      if (inverse) os << "G94\n";
-      os << "M2\n";
-      break;
-    }
+  if (f == CamFormat::gcode) {
+    write_gcode(tp, feeds, axis_digits, os);
+  } else {
+    write_points(tp, o, f == CamFormat::csv, arc, os);
   }
   write_file_atomic(o.output, os.str());
   return tp;

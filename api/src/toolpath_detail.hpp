@@ -51,6 +51,12 @@ inline int exact_decimals(const std::vector<double>& v, int least) {
 /// Decimals of the NURBS G-code's coordinates and weights.
 constexpr int kNurbsDigits = 6;
 
+/// The G1 program into os in tp's dialect: the header comments (what is certified, the path
+/// mode's assumption), units, the path mode, the feed mode, the blocks
+/// (toolpath_gcode.cpp). `feeds`: inverse time's F per block and its decimals.
+void write_gcode(const Toolpath& tp, const std::vector<std::pair<double, int>>& feeds,
+                 int axis_digits, std::ostringstream& os);
+
 /// `--nurbs`: Fanuc G06.2 blocks of the trajectory into os (toolpath_nurbs.cpp).
 void nurbs_toolpath(Toolpath& tp, const cam::ToolTrajectories& src, double k, double tol,
                     std::ostringstream& os);

@@ -33,9 +33,11 @@ MachineFile parse_machine_file(const std::string& text, const std::string& sourc
   const json doc = parse_json(text, source);
   if (!doc.is_object()) throw Error(Errc::invalid_input, source + ": expected a JSON object");
   for (auto it = doc.begin(); it != doc.end(); ++it)
-    if (it.key() != "name" && it.key() != "units" && it.key() != "axes" && it.key() != "velocity")
-      throw Error(Errc::invalid_input, source + ": unknown field \"" + it.key() +
-                                           "\" (expected name, units, axes, velocity)");
+    if (it.key() != "name" && it.key() != "units" && it.key() != "axes" && it.key() != "velocity" &&
+        it.key() != "travel" && it.key() != "acceleration")
+      throw Error(Errc::invalid_input,
+                  source + ": unknown field \"" + it.key() +
+                      "\" (expected name, units, axes, velocity, travel, acceleration)");
   MachineFile f;
   cam::Machine& m = f.machine;
   m.name = source;
@@ -79,23 +81,48 @@ MachineFile parse_machine_file(const std::string& text, const std::string& sourc
   }
   const std::string problem = cam::machine_problem(m);
   if (!problem.empty()) throw Error(Errc::invalid_input, source + ": axes: " + problem);
-  if (doc.contains("velocity")) {
-    const json& v = doc["velocity"];
+  // Each of velocity, travel and acceleration: an object keyed by this machine's axis words.
+  auto per_axis = [&](const char* field, const char* example, auto&& read) {
+    if (!doc.contains(field)) return;
+    const json& v = doc[field];
     if (!v.is_object())
-      throw Error(Errc::invalid_input, source +
-                                           ": velocity: expected an object such as "
-                                           "{\"X\": 20000, \"C\": 7200}");
+      throw Error(Errc::invalid_input,
+                  source + ": " + field + ": expected an object such as " + example);
     for (auto it = v.begin(); it != v.end(); ++it) {
-      const std::string where = source + ": velocity: " + it.key();
+      const std::string where = source + ": " + field + ": " + it.key();
       const std::string& k = it.key();
-      if (k.size() != 1 ||
-          (k != "X" && k != "Y" && k != "Z" && k[0] != m.axes[0].name && k[0] != m.axes[1].name))
+      std::size_t i = 5;
+      for (std::size_t j = 0; j < 5; ++j)
+        if (k.size() == 1 && k[0] == m.word(j)) i = j;
+      if (i == 5)
         throw Error(Errc::invalid_input, where + ": not an axis of this machine (X, Y, Z, " +
                                              std::string(1, m.axes[0].name) + ", " +
                                              std::string(1, m.axes[1].name) + ")");
-      f.velocity[k[0]] = limit(it.value(), where);
+      read(i, it.value(), where);
     }
-  }
+  };
+  per_axis("velocity", "{\"X\": 20000, \"C\": 7200}",
+           [&](std::size_t i, const json& v, const std::string& where) {
+             f.velocity[m.word(i)] = limit(v, where);
+           });
+  per_axis(
+      "travel", "{\"A\": [-120, 30], \"Z\": [-500, 0]}",
+      [&](std::size_t i, const json& v, const std::string& where) {
+        if (!v.is_array() || v.size() != 2)
+          throw Error(Errc::invalid_input, where + ": expected [min, max]");
+        const double lo = read_number(v[0], where, 0).value, hi = read_number(v[1], where, 1).value;
+        if (!std::isfinite(lo) || !std::isfinite(hi) || !(lo < hi))
+          throw Error(Errc::invalid_input, where + ": expected finite [min, max] with min < max");
+        m.travel[i] = {lo, hi};
+      });
+  per_axis("acceleration", "{\"X\": 2000, \"C\": 1800}",
+           [&](std::size_t i, const json& v, const std::string& where) {
+             const double a = read_number(v, where).value;
+             if (!(a > 0) || !std::isfinite(a))
+               throw Error(Errc::invalid_input,
+                           where + ": expected a positive acceleration (units or degrees per s²)");
+             m.acceleration[i] = a;
+           });
   return f;
 }
 

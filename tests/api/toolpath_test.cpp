@@ -192,8 +192,9 @@ TEST(Toolpath, UnitsConvertTheOutputAndTheTolerances) {
   EXPECT_NEAR(in.path_length * 25.4, mm.path_length, 1e-9 * mm.path_length);
   EXPECT_LE((in.samples.back().point * 25.4 - mm.samples.back().point).norm(), 1e-9);
   std::ifstream f(o.output);
-  std::string header, modes;
+  std::string header, assumption, modes;
   std::getline(f, header);
+  std::getline(f, assumption);
   std::getline(f, modes);
   EXPECT_EQ(modes.rfind("G20", 0), 0u) << modes;
   o.units = "cm";

@@ -8,6 +8,8 @@
 #include <random>
 #include <vector>
 
+#include "io_test_util.hpp"
+
 namespace qmotion::test {
 namespace {
 
@@ -150,6 +152,46 @@ TEST(Machine, TheSingularAxisIsRefusedOrHeld) {
   EXPECT_EQ(q[4], 37);
   EXPECT_NEAR(q[3], 0, 1e-12);
   EXPECT_LE((cam::forward_kinematics(ac, q).first - V3(1, 2, 3)).norm(), 1e-12);
+}
+
+TEST(Machine, TravelKeepsABranchWithinItOrRefusesNamingTheAxis) {
+  Machine ac = cam::builtin_machine("ac");
+  // The tool tilted 20 degrees about X: the nearer branch has A = -20, C = 0, the other
+  // A = 20, C = 180.
+  const V3 k = cam::forward_kinematics(ac, {0, 0, 0, -20, 0}).second;
+  const MachineAxes zero{};
+  EXPECT_NEAR(cam::inverse_kinematics(ac, V3(5, 0, 0), k, zero, false, "", 0)[3], -20, 1e-9);
+  ac.travel[3] = {-10, 90};
+  MachineAxes q = cam::inverse_kinematics(ac, V3(5, 0, 0), k, zero, false, "", 0);
+  EXPECT_NEAR(q[3], 20, 1e-9);
+  EXPECT_NEAR(std::abs(q[4]), 180, 1e-9);
+  EXPECT_LE((cam::forward_kinematics(ac, q).first - V3(5, 0, 0)).norm(), 1e-12);
+  // C limited to [100, 400]: the first block starts at the turn within it, 180.
+  ac.travel[4] = {100, 400};
+  q = cam::inverse_kinematics(ac, V3(5, 0, 0), k, zero, false, "", 0);
+  EXPECT_NEAR(q[4], 180, 1e-9);
+  // Only one branch lies within travel: there is no other one to start from.
+  EXPECT_TRUE(
+      throws_error([&] { cam::inverse_kinematics(ac, V3(5, 0, 0), k, zero, false, "w", 1); },
+                   Errc::invalid_input, {"w: ", "other branch", "A = -20", "[-10, 90]"}));
+  ac.travel[3] = {-15, 15};
+  EXPECT_TRUE(
+      throws_error([&] { cam::inverse_kinematics(ac, V3(5, 0, 0), k, zero, false, "w", 0); },
+                   Errc::invalid_input, {"neither branch", "A = -20", "A = 20", "[-15, 15]"}));
+  // A following block never jumps to the other branch or unwinds: C at 359 turning on to
+  // 365 leaves [-360, 360], which the same orientation reaches at 5 after unwinding.
+  Machine c = cam::builtin_machine("ac");
+  c.travel[4] = {-360, 360};
+  const V3 k5 = cam::forward_kinematics(c, {0, 0, 0, -20, 5}).second;
+  const MachineAxes prev{0, 0, 0, -20, 359};
+  EXPECT_TRUE(throws_error([&] { cam::inverse_kinematics(c, V3(5, 0, 0), k5, prev, false, "t"); },
+                           Errc::invalid_input, {"t: C reaches the end of its travel", "unwind"}));
+  EXPECT_NO_THROW(cam::inverse_kinematics(c, V3(5, 0, 0), k5, {0, 0, 0, -20, 1}, false, "t"));
+  // A linear axis's travel: X within [-1, 1] refuses a tip at x = 5 on both branches.
+  Machine x = cam::builtin_machine("ac");
+  x.travel[0] = {-1, 1};
+  EXPECT_TRUE(throws_error([&] { cam::inverse_kinematics(x, V3(5, 0, 0), k, zero, false, "", 0); },
+                           Errc::invalid_input, {"neither branch", "X = 5", "[-1, 1]"}));
 }
 
 /// The tip and the axis the machine runs at s in [0, 1] between q0 and q1, and how far

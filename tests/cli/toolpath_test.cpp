@@ -23,56 +23,10 @@
 #include <vector>
 
 #include "cli_util.hpp"
+#include "rs274_util.hpp"
 
 namespace qmotion::test {
 namespace {
-
-/// The STRAIGHT_TRAVERSE and STRAIGHT_FEED positions LinuxCNC's interpreter prints for a
-/// G-code file (x, y, z, a, b, c). Nothing when the build turned real clients off
-/// (-DQMOTION_REAL_CLIENTS=OFF: the test skips, RS274_OR_SKIP), or, a failure, when rs274
-/// is missing (/usr/bin/rs274, or what QMOTION_RS274 names).
-std::optional<std::vector<std::array<double, 6>>> rs274_moves(const std::string& ngc,
-                                                              std::string& log) {
-  if (!QMOTION_REAL_CLIENTS) return std::nullopt;
-  const char* env = std::getenv("QMOTION_RS274");
-  const std::string exe = env ? env : "/usr/bin/rs274";
-  if (!fs::exists(exe)) {
-    ADD_FAILURE() << exe
-                  << " not found: LinuxCNC's rs274 is required (install linuxcnc-uspace: "
-                     "scripts/install-deps.sh --test), or configure with "
-                     "-DQMOTION_REAL_CLIENTS=OFF";
-    return std::nullopt;
-  }
-  const fs::path out = scratch_dir() / "rs274.out";
-  const int raw = std::system(
-      (quote(exe) + " -g " + quote(ngc) + " >" + quote(out.string()) + " 2>&1 </dev/null").c_str());
-  log = slurp(out);
-  EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 0) << log;
-  std::vector<std::array<double, 6>> moves;
-  std::istringstream in(log);
-  for (std::string line; std::getline(in, line);) {
-    const auto p = line.find("STRAIGHT_");
-    if (p == std::string::npos) continue;
-    std::array<double, 6> v{};
-    const std::string args = line.substr(line.find('(', p) + 1);
-    EXPECT_EQ(std::sscanf(args.c_str(), "%lf, %lf, %lf, %lf, %lf, %lf", &v[0], &v[1], &v[2], &v[3],
-                          &v[4], &v[5]),
-              6)
-        << line;
-    moves.push_back(v);
-  }
-  EXPECT_EQ(log.find("error"), std::string::npos) << log;
-  return moves;
-}
-
-/// Skips the test when real clients are off, stops it when rs274 failed to run.
-#define RS274_OR_SKIP(moves)                                                                \
-  do {                                                                                      \
-    if (!(moves) && !QMOTION_REAL_CLIENTS)                                                  \
-      GTEST_SKIP() << "skipped: configured with -DQMOTION_REAL_CLIENTS=OFF, so LinuxCNC's " \
-                      "rs274 is not run";                                                   \
-    if (!(moves)) return;                                                                   \
-  } while (false)
 
 /// The rows of a toolpath CSV (t, x, y, z, i, j, k).
 std::vector<std::vector<double>> csv_rows(const std::string& path) {
@@ -87,20 +41,6 @@ std::vector<std::vector<double>> csv_rows(const std::string& path) {
     rows.push_back(r);
   }
   return rows;
-}
-
-/// The machine words of every G0/G1 block of a G-code file, in order.
-std::vector<std::map<char, double>> gcode_words(const std::string& path) {
-  std::ifstream f(path);
-  std::vector<std::map<char, double>> out;
-  for (std::string line; std::getline(f, line);) {
-    if (line.rfind("G0 ", 0) != 0 && line.rfind("G1 ", 0) != 0) continue;
-    std::map<char, double> w;
-    std::istringstream ws(line.substr(3));
-    for (std::string word; ws >> word;) w[word[0]] = std::stod(word.substr(1));
-    out.push_back(w);
-  }
-  return out;
 }
 
 TEST(Cli, ToolpathGcodeRunsInLinuxCncsInterpreter) {
@@ -149,6 +89,29 @@ TEST(Cli, ToolpathGcodeRunsInLinuxCncsInterpreter) {
   std::string log;
   const auto moves = rs274_moves(ngc, log);
   RS274_OR_SKIP(moves);
+  {  // exact path before the first feed move
+    const auto [mode, feed] = path_mode_and_first_feed(log);
+    EXPECT_LT(mode, feed) << log;
+    EXPECT_NE(log.find("SET_MOTION_CONTROL_MODE(CANON_EXACT_PATH)"), std::string::npos) << log;
+  }
+  {  // blending within what the chords leave: P and Q of 0.002 each
+    const std::string blended = (scratch_dir() / "tp_blend.ngc").string();
+    std::vector<std::string> args{"toolpath", m, "-o", blended, "--controller-tol", "0.004"};
+    args.insert(args.end(), common.begin(), common.end());
+    const Result r = run(args);
+    ASSERT_EQ(r.status, 0) << r.err;
+    const json report = json::parse(r.out);
+    EXPECT_LE(report["max_chord_deviation_bound"].get<double>(), 0.006);
+    EXPECT_LE(report["max_path_deviation_bound"].get<double>(), 0.01);
+    std::string blog;
+    const auto bmoves = rs274_moves(blended, blog);
+    RS274_OR_SKIP(bmoves);
+    const auto [mode, feed] = path_mode_and_first_feed(blog);
+    EXPECT_LT(mode, feed) << blog;
+    EXPECT_NE(blog.find("SET_MOTION_CONTROL_MODE(CANON_CONTINUOUS, 0.002000)"), std::string::npos)
+        << blog;
+    EXPECT_NE(blog.find("SET_NAIVECAM_TOLERANCE(0.0020)"), std::string::npos) << blog;
+  }
   const auto words = gcode_words(ngc);
   ASSERT_EQ(moves->size(), words.size()) << log;
   ASSERT_EQ(words.size(), tp3.samples.size());
@@ -249,24 +212,32 @@ TEST(Cli, ToolpathNurbsReportsItsCertifiedDeviation) {
 
 TEST(Cli, ToolpathMachinesAndInverseTimeRunInLinuxCncsInterpreter) {
   // 150 mm off the pivot, the axis tilting by tens of degrees: A/C and B/C tables, a
-  // head-table machine file, each with inverse-time feed and axis limits.
-  const std::string m = (scratch_dir() / "tilt_motion.json").string();
-  ASSERT_EQ(
-      run({"interpolate", test_data("poses/tilt_150.json"), "--form", "bspline", "-o", m}).status,
-      0);
-  const qmotion::Motion motion = io::load_motion(m);
+  // head-table machine file, each with inverse-time feed and axis limits; and an A/C table
+  // with the tool axis passing 0.2 degrees from its pole.
+  auto motion_file = [](const std::string& poses) {
+    const std::string m = (scratch_dir() / (poses + "_motion.json")).string();
+    EXPECT_EQ(
+        run({"interpolate", test_data("poses/" + poses + ".json"), "--form", "bspline", "-o", m})
+            .status,
+        0);
+    return m;
+  };
   const double tol = 0.01;
   struct Case {
     std::string name;
     std::vector<std::string> args;
+    std::string poses = "tilt_150";
   };
   const std::vector<Case> cases{
       {"ac", {"--rotary", "ac", "--feed-mode", "inverse-time", "--axis-limits", "A=4000,C=4000"}},
       {"bc", {"--rotary", "bc", "--feed-mode", "inverse-time"}},
       {"file", {"--machine", test_data("machines/head_table.json"), "--feed-mode", "inverse-time"}},
-      {"heads", {"--machine", test_data("machines/head_head.json")}}};
+      {"heads", {"--machine", test_data("machines/head_head.json")}},
+      {"near", {"--rotary", "ac", "--feed-mode", "inverse-time"}, "near_pole"}};
   for (const auto& c : cases) {
     SCOPED_TRACE(c.name);
+    const std::string m = motion_file(c.poses);
+    const qmotion::Motion motion = io::load_motion(m);
     const std::string ngc = (scratch_dir() / ("tilt_" + c.name + ".ngc")).string();
     std::vector<std::string> args{"toolpath", m,        "--point", "0,0,0", "--chord-tol",
                                   "0.01",     "--feed", "800",     "-o",    ngc};
@@ -285,6 +256,7 @@ TEST(Cli, ToolpathMachinesAndInverseTimeRunInLinuxCncsInterpreter) {
     o.chord_tol = tol;
     o.feed = 800;
     if (c.name == "ac" || c.name == "bc") o.rotary = c.name;
+    if (c.name == "near") o.rotary = "ac";
     if (c.name == "file") o.machine_file = test_data("machines/head_table.json");
     if (c.name == "heads") o.machine_file = test_data("machines/head_head.json");
     if (inverse) o.feed_mode = "inverse-time";
@@ -297,6 +269,9 @@ TEST(Cli, ToolpathMachinesAndInverseTimeRunInLinuxCncsInterpreter) {
     const auto moves = rs274_moves(ngc, log);
     RS274_OR_SKIP(moves);
     ASSERT_EQ(moves->size(), words.size()) << log;
+    const auto [mode, feed] = path_mode_and_first_feed(log);
+    EXPECT_LT(mode, feed) << log;
+    EXPECT_NE(log.find("CANON_EXACT_PATH"), std::string::npos) << log;
     if (inverse) {
       EXPECT_NE(log.find("inverse time"), std::string::npos) << log;
     }
@@ -338,7 +313,17 @@ TEST(Cli, ToolpathMachinesAndInverseTimeRunInLinuxCncsInterpreter) {
       for (int s = 0; s <= 32; ++s) {
         cam::MachineAxes q;
         for (std::size_t j = 0; j < 5; ++j) q[j] = q0[j] + (q1[j] - q0[j]) * s / 32;
-        const auto [p, k] = cam::forward_kinematics(*tp.machine, q);
+        auto [p, k] = cam::forward_kinematics(*tp.machine, q);
+        if (c.name == "ac" || c.name == "bc" || c.name == "near") {
+          // LinuxCNC's own trt kinematics is the reference for its tables.
+          const std::array<double, 6> j{
+              q[0], q[1], q[2], r0 == 'A' ? q[3] : 0.0, r0 == 'B' ? q[3] : 0.0, q[4]};
+          const auto [pl, kl] = trt_forward(r0, j);
+          EXPECT_LE((pl - p).norm(), 1e-9 * (1 + p.norm()));
+          EXPECT_LE((kl - k).norm(), 1e-12);
+          p = pl;
+          k = kl;
+        }
         double d = HUGE_VAL;
         for (std::size_t e = 0; e + 1 < arc.size(); ++e) {
           const Eigen::Vector3d ab = arc[e + 1] - arc[e];

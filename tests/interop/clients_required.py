@@ -3,8 +3,9 @@
 
 Runs the FreeCAD test with QMOTION_FREECADCMD naming no program, the rs274 tests of
 cli_tests with QMOTION_RS274 naming no program, and the Blender and glTF validator tests
-with QMOTION_BLENDER and QMOTION_NODE naming no program, and the viewer's with
-QMOTION_CHROMIUM naming no program: each must fail (exit 1, not the
+with QMOTION_BLENDER and QMOTION_NODE naming no program, the viewer's with
+QMOTION_CHROMIUM naming no program, and LinuxCNC's simulator with QMOTION_LINUXCNC naming no
+program: each must fail (exit 1, not the
 skip code 77, not a pass) and say what to install and which CMake option turns the test off.
 
 Usage: clients_required.py RUN_FREECAD.py QMOTION DATA CLI_TESTS WORK
@@ -33,11 +34,12 @@ def main():
                         % (r.returncode, out[-3000:]))
     here = os.path.dirname(os.path.abspath(__file__))
     env = dict(os.environ, QMOTION_BLENDER=missing, QMOTION_NODE=missing,
-               QMOTION_CHROMIUM=missing, QMOTION_REAL_CLIENTS="ON")
+               QMOTION_CHROMIUM=missing, QMOTION_LINUXCNC=missing, QMOTION_REAL_CLIENTS="ON")
     for script, args in (("blender_gltf.py", [qmotion, os.path.join(data, "helix_10.json"),
                                                "rational", "box:1,1,1", "0.01"]),
                          ("gltf_validator.py", [qmotion, data]),
-                         ("viewer.py", [qmotion, data])):
+                         ("viewer.py", [qmotion, data]),
+                         ("linuxcnc_sim.py", [qmotion, data])):
         r = subprocess.run([sys.executable, os.path.join(here, script)] + args + [work],
                            env=env, capture_output=True, text=True)
         out = r.stdout + r.stderr
@@ -47,8 +49,8 @@ def main():
     for f in failures:
         print(f)
     if not failures:
-        print("a missing FreeCAD, rs274, Blender, glTF validator and Chromium each fail their "
-              "tests, naming the option")
+        print("a missing FreeCAD, rs274, Blender, glTF validator, Chromium and LinuxCNC each "
+              "fail their tests, naming the option")
     return 1 if failures else 0
 
 

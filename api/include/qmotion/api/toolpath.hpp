@@ -42,6 +42,12 @@ struct ToolpathOptions {
   /// The unit of the output and of chord_tol, max_step and feed (default: the motion's;
   /// APT and G-code: mm or in, a motion in another unit is written in mm).
   std::string units;
+  /// G-code: the controller whose words the program uses: "linuxcnc" (the default), "fanuc"
+  /// (the default of --nurbs, whose G06.2 is Fanuc's) or "siemens" (docs/cam.md).
+  std::string dialect;
+  /// G-code G1, 3-axis: the part of chord_tol left to the controller's blending (G64 P Q,
+  /// G642 CTOL), the chords taking the rest; 0 (the default): exact path (G61, G60 G601).
+  double controller_tol = 0;
 };
 
 /// The NURBS of `--nurbs` as written.
@@ -66,7 +72,16 @@ struct Toolpath {
   std::map<char, double> axis_limits;  ///< the limits applied (inverse-time)
   std::vector<double> block_minutes;   ///< inverse-time: the time of every G1 block
   std::size_t limited_blocks = 0;      ///< blocks slowed down by an axis limit
-  double machining_time_min = 0;
+  double machining_time_min = 0;       ///< at the feeds (and velocity limits) alone
+  /// G1 G-code: each block from rest to rest on a trapezoidal profile under the machine's
+  /// accelerations (an upper bound under exact stop; equal to the above without limits).
+  double machining_time_accel_min = 0;
+  std::string dialect;        ///< G-code: the controller's words
+  std::string path_mode;      ///< G-code: the path-mode words the program commands
+  double controller_tol = 0;  ///< G-code: the part of the tolerance the controller may use
+  /// A machine with travel: the branch the first block took ("nearer" to the machine's zero,
+  /// or "other" when the nearer one leaves travel on the way); "" without travel.
+  std::string branch;
   double path_length = 0;  ///< of the exact trajectory (Gauss-Legendre)
   /// Certified for the numbers as written (and, with a machine, for its interpolation),
   /// plus the fit for a quaternion spline.
@@ -74,6 +89,9 @@ struct Toolpath {
   double max_chord_measured = 0;  ///< the written chords, 32 exact points per segment
   double max_angle_bound_deg = 0;
   double rounding_bound = 0;  ///< the largest distance of a written point from the exact one
+  /// A quaternion spline's fit (sweep::fit_frames) at the tool point: proven, in every
+  /// budget above, and sampled beside it; 0 for a rational motion.
+  double fit_bound = 0, fit_measured = 0;
   /// With a machine: the certified tip and axis deviation of its interpolation from the
   /// chord and the blend (included in the bounds above); measured at 15 points inside each
   /// block, the tip's distance from the chord at the same s and from the exact trajectory
@@ -89,8 +107,8 @@ struct Toolpath {
 /// to options.output by its extension. A quaternion spline's trajectory is fitted within a
 /// tenth of the chord tolerance first (sweep::fit_frames), the chords within the rest.
 /// Errc::invalid_input names a bad option (zero axis, tolerance, format, a machine file, a
-/// feed mode the format cannot carry, a pose at the machine's singularity without c_hold);
-/// nothing is written then.
+/// feed mode the format cannot carry, a pose at the machine's singularity without c_hold, an
+/// axis that leaves its travel on both branches); nothing is written then.
 Toolpath toolpath(const Motion& motion, const ToolpathOptions& options);
 
 }  // namespace qmotion

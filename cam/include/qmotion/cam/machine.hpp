@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <qmotion/kernel/error.hpp>
 #include <string>
 #include <utility>
@@ -34,15 +35,36 @@ struct RotaryAxis {
 ///   tip (machine) = XYZ + H(angles)(0),  tip (workpiece) = T(angles)^-1 (tip (machine)),
 ///   axis (workpiece) = T_lin^T H_lin (0, 0, 1),
 /// with T the table axes' composition (outer after inner) and H the head's.
-struct Machine {
-  std::string name;                  ///< for the report and the G-code header
-  std::array<RotaryAxis, 2> axes{};  ///< see above
-  std::string units = "mm";          ///< the unit of the pivots
+/// The travel of one machine axis, [min, max] (length, or degrees for a rotary axis);
+/// unlimited by default.
+struct Travel {
+  double min = -HUGE_VAL, max = HUGE_VAL;
+  bool limited() const { return std::isfinite(min) || std::isfinite(max); }
+  bool contains(double v) const { return v >= min && v <= max; }
 };
 
 /// The machine axes of one block: X, Y, Z (length) and the two rotary angles (degrees) in the
 /// order of Machine::axes.
 using MachineAxes = std::array<double, 5>;
+
+struct Machine {
+  std::string name;                  ///< for the report and the G-code header
+  std::array<RotaryAxis, 2> axes{};  ///< see above
+  std::string units = "mm";  ///< the unit of the pivots, the linear travel and accelerations
+  /// Per axis in the order of MachineAxes (X, Y, Z, axes[0], axes[1]): the travel, and the
+  /// acceleration limit (units or degrees per s^2; infinite: none).
+  std::array<Travel, 5> travel{};
+  std::array<double, 5> acceleration{HUGE_VAL, HUGE_VAL, HUGE_VAL, HUGE_VAL, HUGE_VAL};
+  /// The G-code word of axis i of MachineAxes.
+  char word(std::size_t i) const { return i < 3 ? static_cast<char>('X' + i) : axes[i - 3].name; }
+};
+
+/// Errc::invalid_input raised when an axis would leave its travel (the caller may try the
+/// other branch from the first block).
+class TravelError : public Error {
+ public:
+  explicit TravelError(const std::string& message) : Error(Errc::invalid_input, message) {}
+};
 
 namespace detail {
 
@@ -126,16 +148,51 @@ inline std::pair<Eigen::Vector3d, Eigen::Vector3d> forward_kinematics(const Mach
   return {p, k};
 }
 
+namespace detail {
+
+/// x with nine significant digits, as messages print it.
+inline std::string number_text(double x) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.9g", x);
+  return b;
+}
+
+inline std::string travel_text(const Travel& r) {
+  return "[" + number_text(r.min) + ", " + number_text(r.max) + "]";
+}
+
+/// The value deg + 360 k within `travel` nearest to `near`, or NaN when none is.
+inline double within_travel(double deg, double near, const Travel& travel) {
+  const double u = deg + 360 * std::round((near - deg) / 360);
+  if (travel.contains(u)) return u;
+  double best = std::nan(""), cost = HUGE_VAL;
+  for (const double c :
+       {u + 360 * std::ceil((travel.min - u) / 360), u - 360 * std::ceil((u - travel.max) / 360)})
+    if (travel.contains(c) && std::abs(c - near) < cost) {
+      best = c;
+      cost = std::abs(c - near);
+    }
+  return best;
+}
+
+}  // namespace detail
+
 /// Inverse kinematics: the machine axes that put the tool tip at p and the tool axis along
-/// the unit k (workpiece coordinates). Of the two solutions the one nearer `prev` (the sum of
-/// the angle changes; the machine's zero for the first block) is kept, each angle unwrapped
-/// to within 180 degrees of its previous value. Where k lies along the axis that turns it
-/// (the singular axis: C of an A/C or B/C table), that axis's angle is undefined: it keeps
-/// its previous value when `hold`, else Errc::invalid_input (`what` names the option and t).
-/// Errc::invalid_input too when no angles reach k (a head whose axes are not orthogonal).
+/// the unit k (workpiece coordinates).
+/// - A following block (first_branch < 0) takes, of the two solutions, the one nearer `prev`
+///   (the sum of the angle changes), each angle unwrapped to within 180 degrees of its
+///   previous value. An axis that would then leave its travel throws TravelError naming it
+///   and the limit (the machine would have to jump or unwind).
+/// - The first block (first_branch 0 or 1) takes, of the solutions within travel (a limited
+///   rotary axis may start at any turn that lies within it), the nearer to `prev` (the
+///   machine's zero) or the other one; TravelError when there is none.
+/// Where k lies along the axis that turns it (the singular axis: C of an A/C or B/C table),
+/// that axis's angle is undefined: it keeps its previous value when `hold`, else
+/// Errc::invalid_input (`what` names the option and t). Errc::invalid_input too when no
+/// angles reach k (a head whose axes are not orthogonal).
 inline MachineAxes inverse_kinematics(const Machine& m, const Eigen::Vector3d& p,
                                       const Eigen::Vector3d& k, const MachineAxes& prev, bool hold,
-                                      const std::string& what) {
+                                      const std::string& what, int first_branch = -1) {
   const MachineLayout l = machine_layout(m);
   const Eigen::Vector3d a = m.axes[static_cast<std::size_t>(l.alpha_axis)].direction;
   const Eigen::Vector3d b = m.axes[static_cast<std::size_t>(l.beta_axis)].direction;
@@ -161,11 +218,13 @@ inline MachineAxes inverse_kinematics(const Machine& m, const Eigen::Vector3d& p
                     " the " + name + " axis, where " + name +
                     " is undefined; use --c-hold to keep the previous " + name);
   }
-  auto unwrap = [](double deg, double before) {
-    return deg + 360 * std::round((before - deg) / 360);
+  const bool first = first_branch >= 0;
+  struct Branch {
+    double cost = 0;
+    MachineAxes q{};
+    std::string outside;  ///< the first axis outside its travel, in words ("": none)
   };
-  MachineAxes best{};
-  double cost = HUGE_VAL;
+  std::vector<Branch> cand;
   for (const double sign : {1.0, -1.0}) {
     const Eigen::Vector3d w = w0 + sign * r * n;
     std::array<double, 2> ang{};
@@ -174,19 +233,58 @@ inline MachineAxes inverse_kinematics(const Machine& m, const Eigen::Vector3d& p
     ang[static_cast<std::size_t>(l.beta_axis)] =
         singular ? prev[static_cast<std::size_t>(3 + l.beta_axis)]
                  : l.beta_sign * detail::rad_to_deg(detail::angle_about(b, y, w));
-    MachineAxes q{0, 0, 0, unwrap(ang[0], prev[3]), unwrap(ang[1], prev[4])};
-    const double c = std::abs(q[3] - prev[3]) + std::abs(q[4] - prev[4]);
-    if (c < cost) {
-      cost = c;
-      best = q;
+    Branch br;
+    for (std::size_t i = 0; i < 2; ++i) {
+      const Travel& tr = m.travel[3 + i];
+      const double u = ang[i] + 360 * std::round((prev[3 + i] - ang[i]) / 360);
+      br.q[3 + i] = first && tr.limited() ? detail::within_travel(ang[i], prev[3 + i], tr) : u;
+      if (std::isnan(br.q[3 + i])) {
+        br.q[3 + i] = u;
+        br.outside = std::string(1, m.word(3 + i)) + " = " + detail::number_text(u) +
+                     " (no turn of it lies within its travel " + detail::travel_text(tr) + ")";
+      }
+    }
+    const Eigen::Affine3d t = chain(m, false, br.q), h = chain(m, true, br.q);
+    const Eigen::Vector3d xyz = t * p - h.translation();
+    for (int i = 0; i < 3; ++i) br.q[static_cast<std::size_t>(i)] = xyz(i);
+    br.cost = std::abs(br.q[3] - prev[3]) + std::abs(br.q[4] - prev[4]);
+    for (std::size_t i = 0; i < 5 && br.outside.empty(); ++i)
+      if (!m.travel[i].contains(br.q[i]))
+        br.outside = std::string(1, m.word(i)) + " = " + detail::number_text(br.q[i]) +
+                     " (travel " + detail::travel_text(m.travel[i]) + ")";
+    cand.push_back(br);
+  }
+  std::stable_sort(cand.begin(), cand.end(),
+                   [](const Branch& u, const Branch& v) { return u.cost < v.cost; });
+  if (!first) {
+    // The nearer branch; it must lie within travel (the other one is a jump away).
+    const MachineAxes& q = cand.front().q;
+    for (std::size_t i = 0; i < 5; ++i)
+      if (!m.travel[i].contains(q[i])) {
+        const bool unwind = i >= 3 && !std::isnan(detail::within_travel(q[i], q[i], m.travel[i]));
+        throw TravelError(what + ": " + std::string(1, m.word(i)) +
+                          " reaches the end of its travel " + detail::travel_text(m.travel[i]) +
+                          " and would have to go on" +
+                          (unwind ? " (it would have to unwind)" : ""));
+      }
+    return q;
+  }
+  std::vector<MachineAxes> ok;
+  std::string refusal;
+  for (const Branch& br : cand) {
+    if (br.outside.empty()) {
+      ok.push_back(br.q);
+    } else {
+      refusal += (refusal.empty() ? "" : "; ") + br.outside;
     }
   }
-  const Eigen::Affine3d t = chain(m, false, best), h = chain(m, true, best);
-  const Eigen::Vector3d xyz = t * p - h.translation();
-  best[0] = xyz(0);
-  best[1] = xyz(1);
-  best[2] = xyz(2);
-  return best;
+  if (static_cast<std::size_t>(first_branch) >= ok.size())
+    throw TravelError(what + ": " +
+                      (ok.empty() ? "neither branch of the inverse kinematics lies within travel: "
+                                  : "the other branch of the inverse kinematics leaves its "
+                                    "travel: ") +
+                      refusal);
+  return ok[static_cast<std::size_t>(first_branch)];
 }
 
 /// Bounds on |f|, |f'|, |f''| and |f'''| of a vector function of s in [0, 1].

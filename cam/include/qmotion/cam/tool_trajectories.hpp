@@ -25,7 +25,10 @@ struct ToolTrajectories {
   kernel::BSpline<Eigen::Vector4d> d;  ///< the tool axis's (a direction: weight 0)
   std::function<Eigen::Vector3d(double)> exact_point;     ///< the point on the motion itself
   std::function<Eigen::Vector3d(double)> exact_velocity;  ///< its velocity
-  double fit_error = 0;        ///< the fit's measured deviation (0: exact)
+  /// The fit's proven deviation bound at the point and at the axis's tip 100 units out (0:
+  /// exact); every budget takes this one.
+  double fit_error = 0;
+  double fit_measured = 0;     ///< the fit's sampled deviation, reported beside the bound
   std::vector<double> breaks;  ///< the motion's breakpoints and its continuity inside
   std::vector<int> continuity;
 };
@@ -33,8 +36,8 @@ struct ToolTrajectories {
 /// The trajectories of `point` and of the direction `axis` under the motion. A rational
 /// motion's are exact; Errc::numerical_failure when it has a pole (the tool would run to
 /// infinity). A quaternion spline's rigid maps are fitted (sweep::fit_frames) within
-/// `tol` / 10 at the point and at the axis's tip 100 units out, which holds the fitted axis
-/// within 2e-3 x tol / 10 radians.
+/// `tol` / 10 at the point and at the axis's tip 100 units out, proven (fit_error), which
+/// holds the fitted axis within 2e-3 x tol / 10 radians.
 inline ToolTrajectories tool_trajectories(const qmotion::Motion& motion,
                                           const Eigen::Vector3d& point, const Eigen::Vector3d& axis,
                                           double tol) {
@@ -63,6 +66,7 @@ inline ToolTrajectories tool_trajectories(const qmotion::Motion& motion,
         },
         [h, dh](double t) { return sweep::detail::point_and_tangent(h, dh, t).second; },
         0.0,
+        0.0,
         std::move(breaks),
         std::move(continuity)};
   }
@@ -74,6 +78,7 @@ inline ToolTrajectories tool_trajectories(const qmotion::Motion& motion,
                           sweep::apply(fit.matrix, direction),
                           [motion, x](double t) { return motion.place(t, x); },
                           [motion, x](double t) { return motion.point_velocity(t, x); },
+                          fit.max_deviation_bound,
                           fit.max_deviation,
                           motion.breakpoints(),
                           motion.continuity()};

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <qmotion/cam/machine.hpp>
 #include <qmotion/kernel/bspline.hpp>
 #include <qmotion/kernel/error.hpp>
@@ -38,7 +39,8 @@ struct SamplerOptions {
   std::function<void(double)> progress;
   /// How a block end is written, from the exact point and axis at t and the end before it
   /// (null for the first): rounded to the printed decimals, or turned into machine axes and
-  /// read back. None: as is. The bounds hold for what it returns.
+  /// read back. None: as is. The bounds hold for what it returns. A TravelError refuses the
+  /// trial block; it reaches the caller when no block short enough stays within travel.
   std::function<WrittenEnd(double t, const Eigen::Vector3d& p, const Eigen::Vector3d& k,
                            const WrittenEnd* prev)>
       write;
@@ -183,8 +185,15 @@ inline SampledToolpath sample_toolpath(const kernel::BSpline<Eigen::Vector4d>& h
     double chord = 0, angle = 0, rounding = 0, between = 0, between_angle = 0;
   };
   Block trial, good;
+  std::optional<TravelError> travel;  // why the last trial block failed, if an axis left travel
   auto ok = [&](const ToolpathSample& s0, double t1) {
-    trial.end = write(t1, &s0.written);
+    try {
+      trial.end = write(t1, &s0.written);
+      travel.reset();
+    } catch (const TravelError& e) {
+      travel = e;  // a shorter block may stay within travel
+      return false;
+    }
     const WrittenEnd &w0 = s0.written, &w1 = trial.end.written;
     if ((w1.point - w0.point).norm() > opt.max_step) return false;
     const auto [c, g] = bounds(s0.t, t1, w0, w1);
@@ -220,6 +229,7 @@ inline SampledToolpath sample_toolpath(const kernel::BSpline<Eigen::Vector4d>& h
       hi = s;
       while (true) {  // shrink
         s = hi / 2;
+        if (s < min_step && travel) throw *travel;
         if (s < min_step)
           throw Error(Errc::numerical_failure,
                       "the toolpath needs a step below 1e-12 of the interval near t = " +
