@@ -400,6 +400,18 @@ def test_toolpath_is_the_clis(tmp_path):
     assert {k: v for k, v in ours.items() if k != "path"} == {k: v for k, v in theirs.items() if k != "path"}
     assert open(tmp_path / "t1.ngc").read() == open(tmp_path / "t2.ngc").read()
     assert ours["machine"]["name"] == "head B, table C" and ours["axis_limits"]["C"] == 2000
+    # The controller's words and the part of the tolerance left to it, as the CLI's.
+    sie = qmotion.toolpath(m, str(tmp_path / "s1.ngc"), point=[1, 0, 2], chord_tol=0.01,
+                           dialect="siemens", controller_tol=0.004)
+    r = cli("toolpath", motion, "--point", "1,0,2", "--chord-tol", "0.01", "--dialect", "siemens",
+            "--controller-tol", "0.004", "-o", tmp_path / "s2.ngc")
+    assert r.returncode == 0, r.stderr
+    assert open(tmp_path / "s1.ngc").read() == open(tmp_path / "s2.ngc").read()
+    assert sie["path_mode"] == "G642 CTOL=0.004000" and sie["max_path_deviation_bound"] <= 0.01
+    assert ours["machining_time_with_acceleration_min"] > ours["machining_time_min"]
+    with pytest.raises(ValueError, match="--controller-tol"):
+        qmotion.toolpath(m, str(tmp_path / "s3.ngc"), point=[1, 0, 2], chord_tol=0.01,
+                         dialect="fanuc", controller_tol=0.004)
     with pytest.raises(ValueError, match="axis_limits"):
         qmotion.toolpath(tilt, str(tmp_path / "t3.ngc"), point=[0, 0, 0], chord_tol=0.01,
                          feed_mode="inverse-time", axis_limits={"XY": 5})
