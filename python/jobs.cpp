@@ -38,9 +38,8 @@ py::object toolpath_call(const Motion& motion, const std::string& path, const py
   return to_python(toolpath(motion, o).report());
 }
 
-}  // namespace
-
-void bind_jobs(py::module_& m) {
+/// trajectory, sweep, export, check and compare: the geometry a motion makes and its check.
+void bind_geometry_jobs(py::module_& m) {
   m.def(
       "trajectory",
       [](const PyMotion& p, const py::object& point, int max_degree, double tol,
@@ -133,7 +132,10 @@ void bind_jobs(py::module_& m) {
       "poses, a list of dicts: max_angular_velocity, max_angular_acceleration, "
       "trajectory_length (of point), sweep_poles (exact, or fitted within tol of the sweep's "
       "size), sweep_deviation, max_key_residual; or error.");
+}
 
+/// toolpath, animate, view, volume and check_exact: what a motion drives.
+void bind_output_jobs(py::module_& m) {
   const char* toolpath_doc =
       "`qmotion toolpath`: cutter-location points along the trajectory of point with the tool "
       "axis R(t) axis, each chord within chord_tol of the exact trajectory and each axis within "
@@ -242,6 +244,13 @@ void bind_jobs(py::module_& m) {
       "interpolation), file_deviation, the trajectory order of point by an exact gcd beside "
       "the degree trajectory writes (order), and verified.");
 #endif
+}
+
+}  // namespace
+
+void bind_jobs(py::module_& m) {
+  bind_geometry_jobs(m);
+  bind_output_jobs(m);
 }
 
 }  // namespace qmotion::python

@@ -297,18 +297,16 @@ Computed<sweep::NurbsCurve<double>> compute_trajectory(const Motion& m,
 }
 
 /// Under --solid or --fail-on-self-intersection, the proof that the surfaces about to be
-/// written (and a solid's caps) do not meet themselves: --solid refuses anything not proven,
-/// --fail-on-self-intersection a crossing or a contact (docs/geometry.md).
+/// written (and a solid's caps) do not meet themselves: both refuse anything not proven, a
+/// crossing, a contact, a singular point or a budget that ran out (docs/geometry.md).
 void prove_surfaces(const std::vector<sweep::NurbsSurface<double>>& surfaces,
                     const sweep::Profile<double>& profile, const std::string& profile_name,
                     const ExportOptions& opt, ExportResult& r) {
   if (!opt.self_intersection_check || !(opt.solid || opt.fail_on_self_intersection)) return;
-  r.self_intersection_proof =
-      sweep::prove_no_self_intersection(surfaces, profile.closed, opt.solid);
+  r.self_intersection_proof = sweep::prove_no_self_intersection(surfaces, profile.closed, opt.solid,
+                                                                opt.self_intersection_budget);
   const auto& p = *r.self_intersection_proof;
-  using S = sweep::SelfIntersectionProof::Status;
-  const bool meets = p.status == S::crossing || p.status == S::touching;
-  if (opt.solid ? !p.proven() : meets)
+  if (!p.proven())
     throw Error(Errc::numerical_failure,
                 std::string(opt.solid ? "--solid" : "--fail-on-self-intersection") +
                     ": the sweep of " + profile_name + " " + p.describe() +

@@ -1,5 +1,6 @@
 // tests/api/export_qspline_test.cpp mirrors api/export.hpp for quaternion-spline motions:
-// approximated trajectories and sweeps, measured against the motion itself.
+// approximated trajectories and sweeps, measured against the motion itself; and the
+// self-intersection proof's refusals under --fail-on-self-intersection.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -168,6 +169,29 @@ TEST(ExportQSpline, TheCommonCallsTakeEitherKindOfMotion) {
   EXPECT_TRUE(throws_error(
       [&] { qmotion::export_geometry(any, qmotion::Geometry::trajectory(V3(0, 1, 0)), o); },
       Errc::numerical_failure, {file, "above the tolerance"}));
+  EXPECT_FALSE(fs::exists(o.output));
+}
+
+TEST(ExportSelfIntersection, AnythingNotProvenIsRefusedUnderTheFlag) {
+  // A tube along an open coil is proven free of self-intersection; with a budget of 50 patch
+  // pairs the proof cannot decide, and --fail-on-self-intersection refuses that as it does a
+  // contact (Errc::numerical_failure: exit 3), naming the pair, with nothing written.
+  const qmotion::Motion m = rational("self_intersection/coil_open.json");
+  const auto tube = qmotion::Geometry::sweep(io::read_profile("circle:3"), "circle:3");
+  qmotion::ExportOptions o;
+  o.output = scratch("coil_open.step").string();
+  o.fail_on_self_intersection = true;
+  fs::remove(o.output);
+  const auto r = qmotion::export_geometry(m, tube, o);
+  ASSERT_TRUE(r.self_intersection_proof);
+  EXPECT_TRUE(r.self_intersection_proof->proven());
+  EXPECT_TRUE(fs::exists(o.output));
+  fs::remove(o.output);
+  o.self_intersection_budget = 50;
+  EXPECT_TRUE(
+      throws_error([&] { qmotion::export_geometry(m, tube, o); }, Errc::numerical_failure,
+                   {"--fail-on-self-intersection: the sweep of circle:3 is not proven",
+                    "the budget of 50 pairs ran out, undecided between t in [", "profile edge 0"}));
   EXPECT_FALSE(fs::exists(o.output));
 }
 

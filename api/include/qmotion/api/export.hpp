@@ -35,9 +35,12 @@ struct ExportOptions {
   /// With `solid` or `fail_on_self_intersection`, also the proof on the exact surfaces
   /// (sweep::prove_no_self_intersection).
   bool self_intersection_check = true;
-  /// Surfaces: a sweep that crosses or touches itself is refused (Errc::numerical_failure);
-  /// --solid refuses any sweep not proven free of self-intersection.
+  /// Surfaces: a sweep not proven free of self-intersection (crossing, touching, singular,
+  /// or undecided when the budget runs out) is refused (Errc::numerical_failure), and so
+  /// with --solid.
   bool fail_on_self_intersection = false;
+  /// The patch pairs the proof may examine before it gives up (undecided).
+  std::size_t self_intersection_budget = 2'000'000;
   /// Meshes: the largest deviation from the surfaces (absolute; 0: 1e-3 of the size), the
   /// mesher's angular deflection in degrees, ASCII STL/PLY instead of binary.
   double deflection = 0;

@@ -1,5 +1,7 @@
-// <qmotion/kernel/error.hpp>
+// <qmotion/kernel/error.hpp>: the one exception type, its exit codes, and how messages print
+// a figure.
 #pragma once
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -33,6 +35,18 @@ class Error : public std::runtime_error {
  private:
   Errc code_;
 };
+
+namespace kernel::detail {
+
+/// x with three significant digits, as messages print a figure.
+inline std::string format_double(double x) {
+  std::ostringstream os;
+  os.precision(3);
+  os << x;
+  return os.str();
+}
+
+}  // namespace kernel::detail
 
 /// Precondition check for caller bugs (STYLE §5); active unless NDEBUG.
 #ifdef NDEBUG

@@ -2,6 +2,7 @@
 #pragma once
 #include <cmath>
 #include <optional>
+#include <qmotion/kernel/error.hpp>
 #include <qmotion/kernel/linear_solve.hpp>
 #include <qmotion/kernel/methods.hpp>
 #include <qmotion/kernel/motion.hpp>
@@ -160,13 +161,6 @@ MotionFactors<Scalar> bezier_factors(TranslationMethod method,
                           std::nullopt};
   if (method == TranslationMethod::trt) f.translation2 = rows(P2);
   return f;
-}
-
-inline std::string format_double(double x) {
-  std::ostringstream os;
-  os.precision(3);
-  os << x;
-  return os.str();
 }
 
 }  // namespace detail

@@ -400,6 +400,61 @@ void gauss_points(const NurbsSurface<double>& f, F&& fn) {
 
 }  // namespace pipe_detail
 
+namespace pipe_detail {
+
+/// h for the piece: |h|^2 = |q|^4 |v|^2, so h = c^2 h_v with |c|^2 = |q|^2 (its roots by the
+/// quadratic formula) and |h_v|^2 = |v|^2 (V's roots are double at |q|^2's: kept out of the
+/// solver). At the ends the pole is the tangent, and n is across it exactly when |h| = |v_l|
+/// there: the end coefficients (h's values there) are set to that modulus, so the shared
+/// circles and the caps stand square to the path whatever the factorisation's rounding.
+inline void factor_h(Piece& p, const std::string& where) {
+  const Poly& a = p.qq;  // Bernstein on [0, 1] -> power: a0 + a1 u + a2 u^2
+  const double c0 = a[0], c1 = 2 * (a[1] - a[0]), c2 = a[0] - 2 * a[1] + a[2];
+  CPoly c{Cx(std::sqrt(c0))};
+  if (c2 > 1e-15 * c0) {
+    const Cx root = (-c1 + std::sqrt(Cx(c1 * c1 - 4 * c2 * c0))) / (2 * c2);
+    const Cx z = root.imag() >= 0 ? root : std::conj(root);
+    c = mul(CPoly{Cx(std::sqrt(c2))}, CPoly{-z, Cx(1) - z});
+  }
+  p.h = mul(mul(c, c), sqrt_sum_of_squares(p.Vv, where));
+  p.h.front() *= std::sqrt(p.V.front()) / std::abs(p.h.front());
+  p.h.back() *= std::sqrt(p.V.back()) / std::abs(p.h.back());
+}
+
+/// Every face of the closed pipe turned outward (X_u x X_v away from the centre of its
+/// sphere), its radius deviation sampled, and the enclosed volume (1/3) sum of the integrals
+/// of (X - o) . dA (Gauss points).
+inline void orient_and_measure(PipeShell& out, const kernel::BSpline<Eigen::Vector4d>& centre,
+                               double r) {
+  constexpr std::size_t A = 4;  // faces per piece, caps per end
+  const Eigen::Vector4d ha = kernel::evaluate(centre, centre.a()),
+                        hb = kernel::evaluate(centre, centre.b());
+  const Eigen::Vector3d ca = ha.tail<3>() / ha(0), cb = hb.tail<3>() / hb(0);
+  auto centre_of = [&](std::size_t k, double u) -> Eigen::Vector3d {
+    if (k >= out.pipe_faces) return k < out.pipe_faces + A ? ca : cb;
+    const Eigen::Vector4d y = kernel::evaluate(centre, u);
+    return y.tail<3>() / y(0);
+  };
+  for (std::size_t k = 0; k < out.shell.faces.size(); ++k) {
+    auto& f = out.shell.faces[k];
+    Eigen::Vector3d X, Xu, Xv;
+    const double um = 0.5 * (f.knots_u.front() + f.knots_u.back());
+    face_derivs(f, um, 0.5 * (f.knots_v.front() + f.knots_v.back()), X, Xu, Xv);
+    if (Xu.cross(Xv).dot(X - centre_of(k, um)) < 0) {
+      for (auto& row : f.points) std::reverse(row.begin(), row.end());
+      for (auto& row : f.weights) std::reverse(row.begin(), row.end());
+    }
+    gauss_points(f, [&](double u, const Eigen::Vector3d& Y, const Eigen::Vector3d& Yu,
+                        const Eigen::Vector3d& Yv, double w) {
+      out.volume += w * (Y - ca).dot(Yu.cross(Yv)) / 3;
+      out.radius_deviation =
+          std::max(out.radius_deviation, std::abs((Y - centre_of(k, u)).norm() - r) / r);
+    });
+  }
+}
+
+}  // namespace pipe_detail
+
 /// The exact pipe of radius r around the homogeneous path `centre` (w, w x, w y, w z) with
 /// its two half-sphere caps, as a closed shell of rational faces:
 /// - each span of the path, subdivided until c' stays within 30 degrees of one direction p,
@@ -482,24 +537,7 @@ inline PipeShell pipe_shell(const kernel::BSpline<Eigen::Vector4d>& centre, doub
       stack.emplace_back(std::move(a), depth + 1);
       continue;
     }
-    // |h|^2 = |q|^4 |v|^2: h = c^2 h_v with |c|^2 = |q|^2 (its roots by the quadratic
-    // formula) and |h_v|^2 = |v|^2 (V's roots are double at |q|^2's: kept out of the solver).
-    {
-      const Poly& a = p.qq;  // Bernstein on [0, 1] -> power: a0 + a1 u + a2 u^2
-      const double c0 = a[0], c1 = 2 * (a[1] - a[0]), c2 = a[0] - 2 * a[1] + a[2];
-      CPoly c{Cx(std::sqrt(c0))};
-      if (c2 > 1e-15 * c0) {
-        const Cx root = (-c1 + std::sqrt(Cx(c1 * c1 - 4 * c2 * c0))) / (2 * c2);
-        const Cx z = root.imag() >= 0 ? root : std::conj(root);
-        c = mul(CPoly{Cx(std::sqrt(c2))}, CPoly{-z, Cx(1) - z});
-      }
-      p.h = mul(mul(c, c), sqrt_sum_of_squares(p.Vv, where));
-    }
-    // At the ends the pole is the tangent, and n is across it exactly when |h| = |v_l|
-    // there: the end coefficients (h's values there) are set to that modulus, so the shared
-    // circles and the caps stand square to the path whatever the factorisation's rounding.
-    p.h.front() *= std::sqrt(p.V.front()) / std::abs(p.h.front());
-    p.h.back() *= std::sqrt(p.V.back()) / std::abs(p.h.back());
+    factor_h(p, where);
     // At t0 the pole is the tangent: the circle's point for z is arg(h) + 2 arg(z) in the
     // frame; matching arg(h) with the previous piece's end makes the arcs meet.
     const Cx h0 = evaluate(p.h, 0.0);
@@ -539,32 +577,7 @@ inline PipeShell pipe_shell(const kernel::BSpline<Eigen::Vector4d>& centre, doub
   for (int j = 0; j < A; ++j)
     out.shell.faces.push_back(cap(last, end_rings[static_cast<std::size_t>(j)], 1, r, j));
   out.shell.closed = true;
-  // Every face turned outward (X_u x X_v away from the centre of its sphere), its radius
-  // deviation sampled, and the enclosed volume (1/3) sum of the integrals of (X - o) . dA.
-  const Eigen::Vector4d ha = kernel::evaluate(centre, centre.a()),
-                        hb = kernel::evaluate(centre, centre.b());
-  const Eigen::Vector3d ca = ha.tail<3>() / ha(0), cb = hb.tail<3>() / hb(0);
-  auto centre_of = [&](std::size_t k, double u) -> Eigen::Vector3d {
-    if (k >= out.pipe_faces) return k < out.pipe_faces + A ? ca : cb;
-    const Eigen::Vector4d y = kernel::evaluate(centre, u);
-    return y.tail<3>() / y(0);
-  };
-  for (std::size_t k = 0; k < out.shell.faces.size(); ++k) {
-    auto& f = out.shell.faces[k];
-    Eigen::Vector3d X, Xu, Xv;
-    const double um = 0.5 * (f.knots_u.front() + f.knots_u.back());
-    face_derivs(f, um, 0.5 * (f.knots_v.front() + f.knots_v.back()), X, Xu, Xv);
-    if (Xu.cross(Xv).dot(X - centre_of(k, um)) < 0) {
-      for (auto& row : f.points) std::reverse(row.begin(), row.end());
-      for (auto& row : f.weights) std::reverse(row.begin(), row.end());
-    }
-    gauss_points(f, [&](double u, const Eigen::Vector3d& Y, const Eigen::Vector3d& Yu,
-                        const Eigen::Vector3d& Yv, double w) {
-      out.volume += w * (Y - ca).dot(Yu.cross(Yv)) / 3;
-      out.radius_deviation =
-          std::max(out.radius_deviation, std::abs((Y - centre_of(k, u)).norm() - r) / r);
-    });
-  }
+  orient_and_measure(out, centre, r);
   return out;
 }
 
