@@ -346,7 +346,7 @@ cam::SampledToolpath sample_within_travel(const cam::ToolTrajectories& src,
     label(out);
     return out;
   } catch (const cam::TravelError& e) {
-    if (std::string(e.what()).find("neither branch") != std::string::npos) throw;
+    if (e.at_start()) throw;  // the first block has no branch within travel
     first_branch = 1;
     try {
       cam::SampledToolpath out = cam::sample_toolpath(src.h, src.d, so);
@@ -481,17 +481,17 @@ Toolpath toolpath(const Motion& motion, const ToolpathOptions& o) {
   tp.angle_tol_deg = o.angle_tol_deg;
   tp.feed = o.feed;
   tp.path = o.output;
-  tp.dialect =
-      cam::dialect_name(o.dialect.empty() ? o.nurbs ? cam::Dialect::fanuc : cam::Dialect::linuxcnc
-                                          : cam::parse_dialect(o.dialect, "--dialect"));
+  const cam::Dialect dialect = o.dialect.empty()
+                                   ? o.nurbs ? cam::Dialect::fanuc : cam::Dialect::linuxcnc
+                                   : cam::parse_dialect(o.dialect, "--dialect");
+  tp.dialect = cam::dialect_name(dialect);
   tp.controller_tol = o.controller_tol;
-  if (f == CamFormat::gcode)
-    tp.path_mode =
-        cam::path_mode(cam::parse_dialect(tp.dialect, "--dialect"), o.controller_tol, tp.units)
-            .words;
+  cam::PathMode mode;
+  if (f == CamFormat::gcode) mode = cam::path_mode(dialect, o.controller_tol, tp.units);
+  tp.path_mode = mode.words;
   if (o.nurbs) {
     std::ostringstream os;
-    nurbs_toolpath(tp, src, k, tol, os);
+    nurbs_toolpath(tp, src, k, tol, mode, os);
     tp.machining_time_min = tp.path_length / tp.feed;
     write_file_atomic(o.output, os.str());
     return tp;
@@ -557,7 +557,7 @@ Toolpath toolpath(const Motion& motion, const ToolpathOptions& o) {
   if (f == CamFormat::gcode) machining_time_with_acceleration(tp, arc);
   std::ostringstream os;
   if (f == CamFormat::gcode) {
-    write_gcode(tp, feeds, axis_digits, os);
+    write_gcode(tp, feeds, axis_digits, dialect, mode, os);
   } else {
     write_points(tp, o, f == CamFormat::csv, arc, os);
   }

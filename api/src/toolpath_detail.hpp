@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <qmotion/api/toolpath.hpp>
+#include <qmotion/cam/controller.hpp>
 #include <qmotion/cam/tool_trajectories.hpp>
 #include <qmotion/sweep/solid.hpp>
 #include <sstream>
@@ -55,10 +56,11 @@ constexpr int kNurbsDigits = 6;
 /// mode's assumption), units, the path mode, the feed mode, the blocks
 /// (toolpath_gcode.cpp). `feeds`: inverse time's F per block and its decimals.
 void write_gcode(const Toolpath& tp, const std::vector<std::pair<double, int>>& feeds,
-                 int axis_digits, std::ostringstream& os);
+                 int axis_digits, cam::Dialect dialect, const cam::PathMode& mode,
+                 std::ostringstream& os);
 
 /// `--nurbs`: Fanuc G06.2 blocks of the trajectory into os (toolpath_nurbs.cpp).
 void nurbs_toolpath(Toolpath& tp, const cam::ToolTrajectories& src, double k, double tol,
-                    std::ostringstream& os);
+                    const cam::PathMode& mode, std::ostringstream& os);
 
 }  // namespace qmotion::toolpath_detail

@@ -1,14 +1,12 @@
 // api/src/toolpath_gcode.cpp: the G1 program of `qmotion toolpath` in the controller's
 // dialect, with the path mode its certificate assumes (docs/cam.md).
-#include <qmotion/cam/controller.hpp>
-
 #include "toolpath_detail.hpp"
 
 namespace qmotion::toolpath_detail {
 
 void write_gcode(const Toolpath& tp, const std::vector<std::pair<double, int>>& feeds,
-                 int axis_digits, std::ostringstream& os) {
-  const cam::Dialect d = cam::parse_dialect(tp.dialect, "--dialect");
+                 int axis_digits, cam::Dialect d, const cam::PathMode& mode,
+                 std::ostringstream& os) {
   const bool inverse = tp.feed_mode == "inverse-time";
   const std::optional<cam::Machine>& machine = tp.machine;
   std::string head = "qmotion toolpath: " + std::to_string(tp.samples.size()) +
@@ -19,9 +17,9 @@ void write_gcode(const Toolpath& tp, const std::vector<std::pair<double, int>>& 
     for (const auto& [w, v] : tp.axis_limits) head += ", " + std::string(1, w) + " <= " + num(v, 4);
   }
   os << cam::comment(d, head) << "\n";
-  os << cam::comment(d, cam::path_mode(d, tp.controller_tol, tp.units).assumption) << "\n";
+  os << cam::comment(d, mode.assumption) << "\n";
   os << cam::units_word(d, tp.units == "in") << " G90 G17 " << (inverse ? "G93" : "G94") << "\n";
-  os << tp.path_mode << "\n";
+  os << mode.words << "\n";
   if (!inverse) os << "F" << num(tp.feed, 4) << "\n";
   for (std::size_t i = 0; i < tp.samples.size(); ++i) {
     std::string words;

@@ -1,6 +1,5 @@
 // api/src/toolpath_nurbs.cpp: `toolpath --nurbs`, the trajectory as G06.2 NURBS blocks.
 #include <qmotion/cam/cam_nurbs.hpp>
-#include <qmotion/cam/controller.hpp>
 #include <qmotion/kernel/error.hpp>
 
 #include "toolpath_detail.hpp"
@@ -12,7 +11,7 @@ namespace qmotion::toolpath_detail {
 /// numbers as written; measured against the exact motion at 64 points per span; Fanuc
 /// G06.2 blocks into os.
 void nurbs_toolpath(Toolpath& tp, const cam::ToolTrajectories& src, double k, double tol,
-                    std::ostringstream& os) {
+                    const cam::PathMode& mode, std::ostringstream& os) {
   cam::CamNurbsOptions no;
   no.tol = tol - src.fit_error;
   no.written = [k](const Eigen::Vector4d& v) {
@@ -66,9 +65,9 @@ void nurbs_toolpath(Toolpath& tp, const cam::ToolTrajectories& src, double k, do
        << nt.spans << (nt.spans == 1 ? " span, " : " spans, ")
        << (nt.exact ? "the exact trajectory" : "a fit")
        << ", certified deviation <= " << nt.max_deviation_bound << " " << tp.units << ")\n";
-  os << head.str() << "(" << cam::path_mode(cam::Dialect::fanuc, 0, tp.units).assumption << ")\n"
+  os << head.str() << cam::comment(cam::Dialect::fanuc, mode.assumption) << "\n"
      << (tp.units == "in" ? "G20" : "G21") << " G90 G17 G94\n"
-     << tp.path_mode << "\n";
+     << mode.words << "\n";
   auto xyz = [](const Eigen::Vector4d& v) {
     return " X" + num(v(1) / v(0)) + " Y" + num(v(2) / v(0)) + " Z" + num(v(3) / v(0));
   };

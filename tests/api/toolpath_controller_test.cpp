@@ -91,11 +91,7 @@ TEST(ToolpathController, EveryProgramCommandsItsPathModeBeforeTheFirstFeedMove) 
                   tp.max_chord_bound + o.controller_tol, 1e-15);
       const auto rows = read_rows(o.output);
       ASSERT_EQ(rows.size(), tp.samples.size());
-      double worst = 0;
-      for (std::size_t i = 0; i + 1 < rows.size(); ++i)
-        for (const V3& p : arc_points(m, tp.samples[i].t, tp.samples[i + 1].t, V3::Zero(), 32))
-          worst = std::max(worst, segment_distance(p, rows[i].point, rows[i + 1].point));
-      EXPECT_LE(worst, tol - o.controller_tol);
+      EXPECT_LE(written_chord_distance(m, tp, rows), tol - o.controller_tol);
     }
   }
 }
@@ -166,9 +162,7 @@ TEST(ToolpathController, TravelKeepsTheBranchWithinItOrRefusesNamingTAndTheAxis)
       EXPECT_GE(r.words.at('A'), c.lo);
       EXPECT_LE(r.words.at('A'), c.hi);
     }
-    const auto [tip, ang] = machine_run(m, tp, rows, [&](const cam::MachineAxes& q) {
-      return cam::forward_kinematics(*tp.machine, q);
-    });
+    const auto [tip, ang] = machine_run(m, tp, rows);
     EXPECT_LE(tip, tol);
     EXPECT_LE(ang, 0.5 * kPi / 180);
   }
@@ -252,9 +246,7 @@ TEST(ToolpathController, NearThePoleTheTableStaysWithinTheToleranceTurningCOnlyA
         o.c_hold = hold;
         const qmotion::Toolpath tp = qmotion::toolpath(m, o);
         const auto rows = read_rows(o.output);
-        const auto [tip, ang] = machine_run(m, tp, rows, [&](const cam::MachineAxes& q) {
-          return cam::forward_kinematics(*tp.machine, q);
-        });
+        const auto [tip, ang] = machine_run(m, tp, rows);
         EXPECT_LE(tip, tol);
         EXPECT_LE(ang, 0.5 * kPi / 180);
         // C turns monotonically and no further than the azimuth of the tool axis does: by
@@ -300,16 +292,8 @@ TEST(ToolpathController, QuaternionSplinesSpendTheFitsProvenBound) {
       // The sampled check beside the proof: the exact motion against the written chords.
       const auto rows = read_rows(o.output);
       ASSERT_EQ(rows.size(), tp.samples.size());
-      double worst = 0;
-      if (mode == "g1") {
-        for (std::size_t i = 0; i + 1 < rows.size(); ++i)
-          for (const V3& p : arc_points(m, tp.samples[i].t, tp.samples[i + 1].t, V3::Zero(), 32))
-            worst = std::max(worst, segment_distance(p, rows[i].point, rows[i + 1].point));
-      } else {
-        worst = machine_run(m, tp, rows, [&](const cam::MachineAxes& q) {
-                  return cam::forward_kinematics(*tp.machine, q);
-                }).first;
-      }
+      const double worst =
+          mode == "g1" ? written_chord_distance(m, tp, rows) : machine_run(m, tp, rows).first;
       EXPECT_LE(worst, tol);
       EXPECT_NEAR(report["fit_deviation_bound"].get<double>(), tp.fit_bound, 1e-15);
     } else {

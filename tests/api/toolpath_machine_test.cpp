@@ -100,9 +100,7 @@ TEST(ToolpathMachine, WhatTheMachineRunsStaysWithinTheTolerances) {
       // The machine moves every axis linearly between the printed blocks: map its steps back.
       const auto rows = read_rows(o.output);
       ASSERT_EQ(rows.size(), tp.samples.size());
-      const auto [tip, ang] = machine_run(m, tp, rows, [&](const cam::MachineAxes& q) {
-        return cam::forward_kinematics(*tp.machine, q);
-      });
+      const auto [tip, ang] = machine_run(m, tp, rows);
       EXPECT_LE(tip, tol);
       EXPECT_LE(ang, 0.5 * kPi / 180);
       if (tol == 1e-3 && machine != "file") {

@@ -135,13 +135,23 @@ inline double polyline_distance(const V3& p, const std::vector<V3>& line) {
   return d;
 }
 
+/// The largest distance of the exact trajectory of the origin (33 points per block) from the
+/// written chords `rows` of tp.
+inline double written_chord_distance(const qmotion::Motion& m, const qmotion::Toolpath& tp,
+                                     const std::vector<Row>& rows) {
+  double worst = 0;
+  for (std::size_t i = 0; i + 1 < rows.size(); ++i)
+    for (const V3& p : arc_points(m, tp.samples[i].t, tp.samples[i + 1].t, V3::Zero(), 32))
+      worst = std::max(worst, segment_distance(p, rows[i].point, rows[i + 1].point));
+  return worst;
+}
+
 /// What the machine runs between the written blocks `rows` of tp (G-code), every axis
-/// linear, mapped to the workpiece by `forward` (machine axes -> tip and unit axis): the
+/// linear, mapped to the workpiece by qmotion's forward kinematics of tp's machine: the
 /// largest distance of the tip from the exact trajectory and of the axis from the exact
 /// axis (radians), at 33 steps per block.
-template <class F>
-std::pair<double, double> machine_run(const qmotion::Motion& m, const qmotion::Toolpath& tp,
-                                      const std::vector<Row>& rows, F&& forward) {
+inline std::pair<double, double> machine_run(const qmotion::Motion& m, const qmotion::Toolpath& tp,
+                                             const std::vector<Row>& rows) {
   const char r0 = tp.machine->axes[0].name, r1 = tp.machine->axes[1].name;
   double tip = 0, ang = 0;
   for (std::size_t i = 0; i + 1 < rows.size(); ++i) {
@@ -154,7 +164,7 @@ std::pair<double, double> machine_run(const qmotion::Motion& m, const qmotion::T
     for (int s = 0; s <= 32; ++s) {
       cam::MachineAxes q;
       for (std::size_t j = 0; j < 5; ++j) q[j] = q0[j] + (q1[j] - q0[j]) * s / 32;
-      const auto [p, k] = forward(q);
+      const auto [p, k] = cam::forward_kinematics(*tp.machine, q);
       tip = std::max(tip, polyline_distance(p, arc));
       const V3 d = direction(m, t0 + (t1 - t0) * s / 32, V3::UnitZ()).normalized();
       ang = std::max(ang, angle(k, d));

@@ -59,11 +59,17 @@ struct Machine {
   char word(std::size_t i) const { return i < 3 ? static_cast<char>('X' + i) : axes[i - 3].name; }
 };
 
-/// Errc::invalid_input raised when an axis would leave its travel (the caller may try the
-/// other branch from the first block).
+/// Errc::invalid_input raised when an axis would leave its travel. `at_start`: at the first
+/// block, where no choice of branch helps; otherwise on the way, where the caller may start
+/// from the other branch.
 class TravelError : public Error {
  public:
-  explicit TravelError(const std::string& message) : Error(Errc::invalid_input, message) {}
+  TravelError(const std::string& message, bool at_start)
+      : Error(Errc::invalid_input, message), at_start_(at_start) {}
+  bool at_start() const { return at_start_; }
+
+ private:
+  bool at_start_;
 };
 
 namespace detail {
@@ -161,9 +167,12 @@ inline std::string travel_text(const Travel& r) {
   return "[" + number_text(r.min) + ", " + number_text(r.max) + "]";
 }
 
+/// deg + 360 k within 180 degrees of `near`.
+inline double unwrap(double deg, double near) { return deg + 360 * std::round((near - deg) / 360); }
+
 /// The value deg + 360 k within `travel` nearest to `near`, or NaN when none is.
 inline double within_travel(double deg, double near, const Travel& travel) {
-  const double u = deg + 360 * std::round((near - deg) / 360);
+  const double u = unwrap(deg, near);
   if (travel.contains(u)) return u;
   double best = std::nan(""), cost = HUGE_VAL;
   for (const double c :
@@ -218,72 +227,75 @@ inline MachineAxes inverse_kinematics(const Machine& m, const Eigen::Vector3d& p
                     " the " + name + " axis, where " + name +
                     " is undefined; use --c-hold to keep the previous " + name);
   }
-  const bool first = first_branch >= 0;
-  struct Branch {
-    double cost = 0;
-    MachineAxes q{};
-    std::string outside;  ///< the first axis outside its travel, in words ("": none)
-  };
-  std::vector<Branch> cand;
-  for (const double sign : {1.0, -1.0}) {
-    const Eigen::Vector3d w = w0 + sign * r * n;
+  // The angles of both branches, unwrapped near prev; XYZ only for what is returned or, at
+  // the first block, checked against travel.
+  std::array<MachineAxes, 2> cand{};
+  for (std::size_t s = 0; s < 2; ++s) {
+    const Eigen::Vector3d w = w0 + (s == 0 ? r : -r) * n;
     std::array<double, 2> ang{};
     ang[static_cast<std::size_t>(l.alpha_axis)] =
         l.alpha_sign * detail::rad_to_deg(detail::angle_about(a, x, w));
     ang[static_cast<std::size_t>(l.beta_axis)] =
         singular ? prev[static_cast<std::size_t>(3 + l.beta_axis)]
                  : l.beta_sign * detail::rad_to_deg(detail::angle_about(b, y, w));
-    Branch br;
-    for (std::size_t i = 0; i < 2; ++i) {
-      const Travel& tr = m.travel[3 + i];
-      const double u = ang[i] + 360 * std::round((prev[3 + i] - ang[i]) / 360);
-      br.q[3 + i] = first && tr.limited() ? detail::within_travel(ang[i], prev[3 + i], tr) : u;
-      if (std::isnan(br.q[3 + i])) {
-        br.q[3 + i] = u;
-        br.outside = std::string(1, m.word(3 + i)) + " = " + detail::number_text(u) +
-                     " (no turn of it lies within its travel " + detail::travel_text(tr) + ")";
-      }
-    }
-    const Eigen::Affine3d t = chain(m, false, br.q), h = chain(m, true, br.q);
-    const Eigen::Vector3d xyz = t * p - h.translation();
-    for (int i = 0; i < 3; ++i) br.q[static_cast<std::size_t>(i)] = xyz(i);
-    br.cost = std::abs(br.q[3] - prev[3]) + std::abs(br.q[4] - prev[4]);
-    for (std::size_t i = 0; i < 5 && br.outside.empty(); ++i)
-      if (!m.travel[i].contains(br.q[i]))
-        br.outside = std::string(1, m.word(i)) + " = " + detail::number_text(br.q[i]) +
-                     " (travel " + detail::travel_text(m.travel[i]) + ")";
-    cand.push_back(br);
+    for (std::size_t i = 0; i < 2; ++i) cand[s][3 + i] = detail::unwrap(ang[i], prev[3 + i]);
   }
-  std::stable_sort(cand.begin(), cand.end(),
-                   [](const Branch& u, const Branch& v) { return u.cost < v.cost; });
-  if (!first) {
+  auto cost = [&](const MachineAxes& q) {
+    return std::abs(q[3] - prev[3]) + std::abs(q[4] - prev[4]);
+  };
+  if (cost(cand[1]) < cost(cand[0])) std::swap(cand[0], cand[1]);  // the nearer first
+  auto place = [&](MachineAxes& q) {
+    const Eigen::Affine3d t = chain(m, false, q), h = chain(m, true, q);
+    const Eigen::Vector3d xyz = t * p - h.translation();
+    for (int i = 0; i < 3; ++i) q[static_cast<std::size_t>(i)] = xyz(i);
+  };
+  if (first_branch < 0) {
     // The nearer branch; it must lie within travel (the other one is a jump away).
-    const MachineAxes& q = cand.front().q;
+    MachineAxes& q = cand[0];
+    place(q);
     for (std::size_t i = 0; i < 5; ++i)
       if (!m.travel[i].contains(q[i])) {
         const bool unwind = i >= 3 && !std::isnan(detail::within_travel(q[i], q[i], m.travel[i]));
         throw TravelError(what + ": " + std::string(1, m.word(i)) +
-                          " reaches the end of its travel " + detail::travel_text(m.travel[i]) +
-                          " and would have to go on" +
-                          (unwind ? " (it would have to unwind)" : ""));
+                              " reaches the end of its travel " + detail::travel_text(m.travel[i]) +
+                              " and would have to go on" +
+                              (unwind ? " (it would have to unwind)" : ""),
+                          false);
       }
     return q;
   }
+  // The first block: a limited rotary axis may start at any turn within its travel.
   std::vector<MachineAxes> ok;
   std::string refusal;
-  for (const Branch& br : cand) {
-    if (br.outside.empty()) {
-      ok.push_back(br.q);
+  for (MachineAxes& q : cand) {
+    std::string outside;  // the first axis outside its travel, in words
+    for (std::size_t i = 3; i < 5; ++i) {
+      const Travel& tr = m.travel[i];
+      const double v = tr.limited() ? detail::within_travel(q[i], prev[i], tr) : q[i];
+      if (std::isnan(v) && outside.empty())
+        outside = std::string(1, m.word(i)) + " = " + detail::number_text(q[i]) +
+                  " (no turn of it lies within its travel " + detail::travel_text(tr) + ")";
+      if (!std::isnan(v)) q[i] = v;
+    }
+    place(q);
+    for (std::size_t i = 0; i < 5 && outside.empty(); ++i)
+      if (!m.travel[i].contains(q[i]))
+        outside = std::string(1, m.word(i)) + " = " + detail::number_text(q[i]) + " (travel " +
+                  detail::travel_text(m.travel[i]) + ")";
+    if (outside.empty()) {
+      ok.push_back(q);
     } else {
-      refusal += (refusal.empty() ? "" : "; ") + br.outside;
+      refusal += (refusal.empty() ? "" : "; ") + outside;
     }
   }
   if (static_cast<std::size_t>(first_branch) >= ok.size())
     throw TravelError(what + ": " +
-                      (ok.empty() ? "neither branch of the inverse kinematics lies within travel: "
-                                  : "the other branch of the inverse kinematics leaves its "
-                                    "travel: ") +
-                      refusal);
+                          (ok.empty() ? "neither branch of the inverse kinematics lies within "
+                                        "travel: "
+                                      : "the other branch of the inverse kinematics leaves its "
+                                        "travel: ") +
+                          refusal,
+                      true);
   return ok[static_cast<std::size_t>(first_branch)];
 }
 
