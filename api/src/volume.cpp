@@ -102,34 +102,31 @@ nlohmann::json VolumeReport::report() const {
             {"vertices", 0},
             {"closed", true},
             {"seconds", seconds}};
-  return {
-      {"output", path},
-      {"body", body},
-      {"units", units},
-      {"tolerance", v.tolerance},
-      {"distance_bound", v.distance_bound},
-      {"measured_distance", v.measured_distance},
-      {"measured_vertices", v.measured_vertices},
-      {"volume_bounds", {v.volume_lower, v.volume_upper}},
-      {"triangles", triangles},
-      {"vertices", vertices},
-      {"closed", closed},
-      {"float32_rounding", v.rounding},
-      {"route",
-       v.adaptive ? "an octree refined until every triangle is certified clear of the swept volume "
-                    "(docs/geometry.md, Swept volumes)"
-                  : "marching tetrahedra on a certified lower bound of the distance to the swept "
-                    "volume (docs/geometry.md, Swept volumes)"},
-      {"grid_step", v.grid_step},
-      {"largest_cell", v.largest_cell},
-      {"surface_cells", v.surface_cells},
-      {"hull_pieces", v.hull_pieces},
-      {"level", v.level},
-      {"time_pieces", v.time_pieces},
-      {"piece_radius", v.piece_delta},
-      {"distance_queries", v.distance_queries},
-      {"rounds", v.rounds},
-      {"seconds", seconds}};
+  return {{"output", path},
+          {"body", body},
+          {"units", units},
+          {"tolerance", v.tolerance},
+          {"distance_bound", v.distance_bound},
+          {"measured_distance", v.measured_distance},
+          {"measured_vertices", v.measured_vertices},
+          {"volume_bounds", {v.volume_lower, v.volume_upper}},
+          {"triangles", triangles},
+          {"vertices", vertices},
+          {"closed", closed},
+          {"float32_rounding", v.rounding},
+          {"route",
+           "an octree refined until every triangle is certified clear of the swept volume "
+           "(docs/geometry.md, Swept volumes)"},
+          {"grid_step", v.grid_step},
+          {"largest_cell", v.largest_cell},
+          {"surface_cells", v.surface_cells},
+          {"hull_pieces", v.hull_pieces},
+          {"level", v.level},
+          {"time_pieces", v.time_pieces},
+          {"piece_radius", v.piece_delta},
+          {"distance_queries", v.distance_queries},
+          {"rounds", v.rounds},
+          {"seconds", seconds}};
 }
 
 namespace {

@@ -1,5 +1,5 @@
-// api/src/volume_adaptive.cpp: the adaptive enclosing mesh of `volume` for convex bodies
-// (docs/guide/volume.md, "The adaptive mesh"; volume_detail.hpp).
+// api/src/volume_adaptive.cpp: the adaptive enclosing mesh of `volume` (docs/guide/volume.md,
+// "The adaptive mesh"; volume_detail.hpp).
 //
 // The surface is the level tau of the piecewise-linear interpolant g, over the octree's
 // conforming tetrahedra (volume_octree.hpp), of phi: at every tetrahedron's corner, the
@@ -8,7 +8,10 @@
 // piecewise-linear function over a complex, at a value no corner takes. The proof that it
 // encloses V is triangle by triangle: each is certified clear of V (sweep::HullPieces). V is
 // connected and meets no triangle, so it lies in one component of the space off the surface:
-// the one of a corner inside V (phi < 0 < tau there), inside the surface. Every vertex is
+// the one of a corner inside V (phi < 0 < tau there), inside the surface. A mesh body's
+// triangles are certified clear of what its boundary sweeps; each connected sheet of them
+// is then outside V when one of its points is outside the body at the start (finish()).
+// Every vertex is
 // bounded within the tolerance by a placement. A leaf whose triangles or vertices fail is
 // split, and the tree balanced again, until none fails.
 #include <tbb/parallel_for.h>
@@ -285,7 +288,7 @@ class Mesher {
   }
 
   /// The tetrahedron's volume when it lies in V, else 0: when its four corners lie in one
-  /// placement of the body (convex), or each in its own deeper than the circumradius (every
+  /// placement of a convex body, or each in its own deeper than the circumradius (every
   /// point of a tetrahedron is within it of a corner).
   double inside_part(const Octree::Tet& t, const double* v, const double* at) const {
     for (int i = 0; i < 4; ++i)
@@ -304,6 +307,7 @@ class Mesher {
     bool balls = true;
     for (int i = 0; i < 4; ++i) balls = balls && -v[i] >= R;
     if (balls) return std::abs(det) / 6;
+    if (!sweep::is_convex(tree_.body())) return 0;
     const double margin = 1e-12 * scale_;
     for (int j = 0; j < 4; ++j) {
       bool in_one = true;
@@ -387,6 +391,7 @@ class Mesher {
       ++out.cells;
     }
     for (const auto& [k, v] : value_) inside_point = inside_point || v.v < 0;
+    if (!sweep::is_convex(tree_.body())) sheets_outside(out);
     if (out.triangles.empty() || !inside_point)
       throw Error(Errc::numerical_failure,
                   "volume: the adaptive mesh found no point of the volume (a body too small "
@@ -395,7 +400,37 @@ class Mesher {
     out.queries = queries_;
     out.pieces = hulls_.size();
     out.level = tau_;
-    out.adaptive = true;
+  }
+
+  /// A mesh body: every triangle is clear of what the body's boundary sweeps, so a point of
+  /// one never meets M(t) dB and is inside M(t) B for every t or for none; a connected sheet
+  /// of them is outside V when one of its points is outside M(a) B. Each sheet's first
+  /// vertex is asked (its distance to the boundary exceeds the certified margin, so the
+  /// sign is not a rounding's).
+  void sheets_outside(const EnclosingMesh& out) const {
+    std::vector<int> root(out.vertices.size());
+    for (std::size_t i = 0; i < root.size(); ++i) root[i] = static_cast<int>(i);
+    auto find = [&](int v) {
+      while (root[static_cast<std::size_t>(v)] != v)
+        v = root[static_cast<std::size_t>(v)] =
+            root[static_cast<std::size_t>(root[static_cast<std::size_t>(v)])];
+      return v;
+    };
+    for (const auto& t : out.triangles) {
+      root[static_cast<std::size_t>(find(t[1]))] = find(t[0]);
+      root[static_cast<std::size_t>(find(t[2]))] = find(t[0]);
+    }
+    const Eigen::Matrix4d f = motion_.frame(motion_.a());
+    const Eigen::Matrix3d R = f.block<3, 3>(1, 1);
+    for (std::size_t v = 0; v < root.size(); ++v) {
+      if (find(static_cast<int>(v)) != static_cast<int>(v)) continue;
+      const Eigen::Vector3d x = R.transpose() * (out.vertices[v] - f.block<3, 1>(1, 0));
+      if (!(sweep::signed_distance(tree_.body(), x) > 0))
+        throw Error(Errc::numerical_failure,
+                    motion_.label() + ": a sheet of the enclosing mesh lies inside the body " +
+                        tree_.body().spec + " (at " + kernel::detail::format_double(x.norm()) +
+                        " from its origin)");
+    }
   }
 
   const Motion& motion_;

@@ -1,5 +1,5 @@
-// api/src/volume_detail.hpp: what volume.cpp, volume_mesh.cpp, volume_lattice.cpp,
-// volume_adaptive.cpp and volume_written.cpp share.
+// api/src/volume_detail.hpp: what volume.cpp, volume_mesh.cpp, volume_adaptive.cpp and
+// volume_written.cpp share.
 #pragma once
 #include <Eigen/Geometry>
 #include <array>
@@ -28,17 +28,11 @@ struct EnclosingMesh {
   double rounding = 0, level = 0;
   double smallest_cell = 0, largest_cell = 0;  ///< edges of the cells the surface crosses
   bool closed = false;
-  bool adaptive = false;
   int rounds = 0;
   std::size_t queries = 0, cells = 0, pieces = 0;
 };
 
-/// The lattice route (volume_lattice.cpp), for any body: a uniform lattice made finer until
-/// every vertex is within T.
-EnclosingMesh lattice_mesh(const Motion& motion, const sweep::SweptVolumeTree& tree, double T,
-                           const VolumeRounding& rounding);
-
-/// The adaptive route (volume_adaptive.cpp), for convex bodies: an octree refined where a
+/// The adaptive route (volume_adaptive.cpp), for every body: an octree refined where a
 /// triangle or a vertex is not certified.
 EnclosingMesh adaptive_mesh(const Motion& motion, const sweep::SweptVolumeTree& tree,
                             const sweep::HullPieces& hulls, double T,
@@ -66,7 +60,7 @@ Eigen::AlignedBox3d sampled_box(const Motion& m, const sweep::Body& body);
 /// relative 1e-6 for the scaling into the output unit and back.
 double float32_rounding(double largest);
 
-/// float32_rounding for the vertices of a lattice of step h about box at the tolerance T, in
+/// float32_rounding for the vertices of a mesh about box (h: a margin) at the tolerance T, in
 /// the motion's unit. Errc::invalid_input when the coordinates do not fit a float.
 double float32_written(const Eigen::AlignedBox3d& box, double T, double h,
                        const VolumeRounding& rounding);

@@ -1,7 +1,7 @@
 // api/src/volume_mesh.cpp: qmotion::swept_volume, the certified enclosing mesh of `volume`
 // (docs/guide/volume.md; the constructions and their proofs are in docs/geometry.md, "Swept
-// volumes"). A convex body takes the adaptive route (volume_adaptive.cpp), whose triangles
-// follow the surface; a mesh body the lattice (volume_lattice.cpp).
+// volumes"). Every body takes the adaptive route (volume_adaptive.cpp), whose triangles
+// follow the surface.
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -103,31 +103,15 @@ SweptVolume swept_volume(const Motion& motion, const sweep::Body& body, std::opt
   const Eigen::AlignedBox3d sampled = detail::sampled_box(motion, body);
   out.tolerance = tol ? *tol : 1e-3 * sampled.diagonal().norm();
   const double T = out.tolerance;
-  const bool convex = sweep::is_convex(body);
-  if (convex) detail::refuse_octree(motion, sampled, T);
+  detail::refuse_octree(motion, sampled, T);
   const sweep::SweptVolumeTree tree(motion, body, 0.1 * T);
   out.time_pieces = tree.leaves();
   out.piece_delta = tree.largest_leaf_delta();
-  detail::EnclosingMesh m;
-  if (convex) {
-    const sweep::HullPieces hulls(motion, body, 0.05 * T);
-    m = detail::adaptive_mesh(motion, tree, hulls, T, rounding);
-  } else {
-    // The lattice's size before any work: its cells number (extent / h)^3, h about 0.8 T.
-    const Eigen::Vector3d cells = sampled.sizes() / (0.8 * T) + Eigen::Vector3d::Constant(8);
-    if (cells.prod() > 4e6 * 512)
-      throw Error(Errc::numerical_failure,
-                  motion.label() + ": the tolerance " + kernel::detail::format_double(T) +
-                      " is too fine for the swept volume's extent " +
-                      kernel::detail::format_double(sampled.diagonal().norm()) +
-                      " (a lattice of about " + kernel::detail::format_double(cells.prod()) +
-                      " cells): raise --tol");
-    m = detail::lattice_mesh(motion, tree, T, rounding);
-  }
+  const sweep::HullPieces hulls(motion, body, 0.05 * T);
+  detail::EnclosingMesh m = detail::adaptive_mesh(motion, tree, hulls, T, rounding);
   out.distance_bound = m.distance_bound;
   out.grid_step = m.smallest_cell;
   out.largest_cell = m.largest_cell;
-  out.adaptive = m.adaptive;
   out.surface_cells = m.cells;
   out.hull_pieces = m.pieces;
   out.level = m.level;
@@ -143,7 +127,17 @@ SweptVolume swept_volume(const Motion& motion, const sweep::Body& body, std::opt
   out.rounding = m.rounding;
   out.closed = m.closed;
   out.volume_upper = m.enclosed * (1 + 1e-9);
-  out.volume_lower = std::min(m.inside_volume * (1 - 1e-9), out.volume_upper);
+  // V holds the body at every placement, so its volume is at least the body's: for a mesh,
+  // the divergence sum over its triangles (the tetrahedra about the box's centre are what a
+  // thin body's octree cannot certify).
+  double lower = m.inside_volume;
+  if (body.kind == sweep::Body::Kind::mesh) {
+    Eigen::AlignedBox3d own;
+    for (const auto& x : body.mesh.vertices) own.extend(x);
+    lower = std::max(
+        lower, detail::enclosed_volume(body.mesh.vertices, body.mesh.triangles, own.center()));
+  }
+  out.volume_lower = std::min(lower * (1 - 1e-9), out.volume_upper);
   out.vertices = std::move(m.vertices);
   out.triangles = std::move(m.triangles);
   out.distance_queries = m.queries;

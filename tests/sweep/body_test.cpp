@@ -118,28 +118,5 @@ TEST(MeshIndex, AgreesWithTheScanAndTheWindingNumber) {
   }
 }
 
-/// The polytope bound of a non-convex body (sweep::Dop), which gives the swept-volume tree's
-/// leaves their planes: below the signed distance everywhere, and convex with the reported
-/// subgradient (L(y) >= L(x) + g . (y - x)).
-TEST(MeshIndex, PolytopeBoundIsAConvexLowerBound) {
-  const sweep::Body b = io::read_body(test::test_data("bodies/bracket.obj"));
-  const sweep::Dop dop(b.mesh);
-  std::mt19937 g(23);
-  std::uniform_real_distribution<double> u(-15, 15);
-  for (int i = 0; i < 3000; ++i) {
-    const Eigen::Vector3d x(u(g), u(g), u(g)), y(u(g), u(g), u(g));
-    Eigen::Vector3d gx = Eigen::Vector3d::Zero(), gy = Eigen::Vector3d::Zero();
-    const double lx = dop.lower(x, gx), ly = dop.lower(y, gy);
-    EXPECT_LE(lx, sweep::signed_distance(b, x) + 1e-12);
-    EXPECT_GE(ly, lx + gx.dot(y - x) - 1e-12);
-    EXPECT_NEAR(gx.norm(), 1, 1e-15);
-  }
-  // Where the bracket's nearest point lies on a face of the polytope, the bound is exact: a
-  // point below the base plate.
-  Eigen::Vector3d gb = Eigen::Vector3d::Zero();
-  EXPECT_NEAR(dop.lower(Eigen::Vector3d(2, 0, -5), gb), sweep::signed_distance(b, {2, 0, -5}),
-              1e-9);
-}
-
 }  // namespace
 }  // namespace qmotion

@@ -2,7 +2,8 @@
 // convex bodies against points drawn on them, and the certificate that a triangle is clear
 // of the swept volume: never given to a triangle through a point of it (placed by the exact
 // motion at a random time, a point inside or on the body), and given to triangles far from
-// it (farther than the body's reach from the path).
+// it (farther than the body's reach from the path); for a mesh body that is not convex, the
+// same of what its boundary sweeps.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -90,6 +91,39 @@ TEST_P(Certificate, NeverClearsATriangleThroughTheVolumeAndClearsFarOnes) {
     }
     EXPECT_EQ(far, 200) << spec;
   }
+}
+
+/// A mesh body that is not convex (the L-shaped bracket scaled to 2 mm): the pieces cover
+/// what its boundary sweeps, so no triangle through a point of it (on a random triangle of the
+/// body, placed at a random time) is cleared, and triangles far from it are.
+TEST_P(Certificate, CoversWhatAMeshBodysBoundarySweeps) {
+  const Motion m = tilt(GetParam());
+  auto body = qmotion::io::read_body(qmotion::test::test_data("bodies/bracket.obj"));
+  for (auto& v : body.mesh.vertices) v /= 6;
+  const qmotion::sweep::HullPieces hulls(m, body, 5e-4);
+  EXPECT_EQ(hulls.parts(), body.mesh.triangles.size());
+  std::mt19937 g(17);
+  std::uniform_real_distribution<double> u(0, 1);
+  int cleared = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const auto& t = body.mesh.triangles[static_cast<std::size_t>(u(g) * 20) % 20];
+    double a = u(g), b = u(g);
+    if (a + b > 1) a = 1 - a, b = 1 - b;
+    const V3 p = body.mesh.vertices[t[0]] +
+                 a * (body.mesh.vertices[t[1]] - body.mesh.vertices[t[0]]) +
+                 b * (body.mesh.vertices[t[2]] - body.mesh.vertices[t[0]]);
+    const auto tri =
+        triangle_about(m.place(m.a() + (m.b() - m.a()) * u(g), p), 1e-3 + 0.2 * u(g), g);
+    const V3 nrm = (tri[1] - tri[0]).cross(tri[2] - tri[0]).normalized();
+    cleared += hulls.clear(tri, {nrm, V3(-nrm)}, 0);
+  }
+  EXPECT_EQ(cleared, 0);
+  int far = 0;
+  for (int i = 0; i < 200; ++i) {
+    const V3 x(12 * u(g), 4 * u(g) - 2, 20 + 5 * u(g));
+    far += hulls.clear(triangle_about(x, 0.5, g), {V3(0, 0, 1), V3(0, 0, 1)}, 0);
+  }
+  EXPECT_EQ(far, 200);
 }
 
 INSTANTIATE_TEST_SUITE_P(Motions, Certificate, ::testing::Values(true, false),

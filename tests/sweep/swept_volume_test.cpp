@@ -1,8 +1,8 @@
 // tests/sweep/swept_volume_test.cpp mirrors sweep/swept_volume.hpp: the tree's bounds of the
-// distance f(x) from a point to the swept volume, by a full branch and bound (query) and by a
-// batch of points sharing one search (candidates, narrow, query_among), against f measured by
-// a search on t of the test's own (dense samples, then golden sections); and the subgradient
-// of a convex body's signed distance (sweep/body.hpp) that the batches' plane bounds use.
+// distance f(x) from a point to the swept volume by branch and bound (query), against f
+// measured by a search on t of the test's own (dense samples, then golden sections); and the
+// subgradient of a convex body's signed distance (sweep/body.hpp) that the adaptive mesh
+// tries as a separating direction.
 #include <gtest/gtest.h>
 
 #include <cctype>
@@ -69,29 +69,22 @@ qmotion::sweep::Body body_of(const char* spec) {
 
 class TreeBounds : public ::testing::TestWithParam<Case> {};
 
-// Points about the volume's boundary: a placed point of the body pushed out by up to 2 T, a
-// batch of 4^3 lattice points of step h about it (one search, candidates), and its eight cubes
-// of 2^3 (narrow). For every point x of a cube:
-// - every lower bound is below f(x): the full search's, the wide batch's, the narrowed one's,
-//   and the narrowed one's with a wide slack (it stops after few leaves); and all are within
-//   the leaves' radius (plus the batch's slack) of it;
-// - every upper bound is an actual placement, no lower than f(x); the full search's is within
-//   the leaves' radius above it (the leaf holding the best t is opened, or a bound already
-//   proved f reached).
-// For every cube: narrow's lower bound is below f at its vertices, its best is the signed
-// distance from the cube's centre to the placement it names.
+// Points about the volume's boundary: a placed point of the body pushed out by up to 2 T, and
+// the 4^3 lattice points of step h about it. For every point x:
+// - the lower bound is below f(x), and within the leaves' radius of it;
+// - the upper bound is an actual placement (the node it names places the body that far from
+//   x), no lower than f(x), and within the leaves' radius above it (the leaf holding the best
+//   t is opened, or a bound already proved f reached).
 TEST_P(TreeBounds, BracketTheMeasuredDistance) {
   const Case c = GetParam();
   const Motion m = helix(c.rational);
   const auto body = body_of(c.body);
   const double rho = qmotion::sweep::radius(body), T = 0.05 * rho, leaf = 0.1 * T;
   const qmotion::sweep::SweptVolumeTree tree(m, body, leaf);
-  const double h = 0.8 * T, r = 1.5 * std::sqrt(3.0) * h, r2 = 0.5 * std::sqrt(3.0) * h;
-  const double slack = 0.05 * T;
+  const double h = 0.8 * T;
   const auto mesh = qmotion::sweep::triangulate(body, 1e-3 * rho);
   std::mt19937 g(31);
   std::uniform_real_distribution<double> u(0, 1);
-  qmotion::sweep::SweptVolumeTree::Candidates wide, near;
   // eps: rounding; slop: the measured f's excess over the true minimum, besides.
   const double eps = 1e-9 * rho, slop = 1e-6 * rho;
   int outside = 0;
@@ -101,37 +94,19 @@ TEST_P(TreeBounds, BracketTheMeasuredDistance) {
         mesh.vertices[static_cast<std::size_t>(u(g) * mesh.vertices.size()) % mesh.vertices.size()];
     const V3 out = (v - V3(0, 0, 0.5 * rho)).normalized();
     const V3 centre = m.place(t, v + 2 * T * u(g) * out);
-    tree.candidates(centre, r, wide);
-    for (int cube = 0; cube < 8; ++cube) {
-      const V3 c2 = centre + h * V3(cube & 1 ? 1 : -1, cube & 2 ? 1 : -1, cube & 4 ? 1 : -1);
-      tree.narrow(wide, c2, r2, near);
-      ASSERT_GE(near.best_node, 0);
-      EXPECT_NEAR(tree.node_distance(c2, near.best_node), near.best, eps);
-      EXPECT_GE(std::max(near.best, 0.0), measured_distance(m, body, c2) - eps);
-      for (int o = 0; o < 8; ++o) {
-        const V3 x = c2 + 0.5 * h * V3(o & 1 ? 1 : -1, o & 2 ? 1 : -1, o & 4 ? 1 : -1);
-        const double f = measured_distance(m, body, x);
-        const auto full = tree.query(x, -HUGE_VAL);
-        const auto batch = tree.query_among(x, wide, slack, HUGE_VAL);
-        const auto narrowed = tree.query_among(x, near, slack, HUGE_VAL);
-        SCOPED_TRACE(std::string(c.body) + " trial " + std::to_string(trial) + " cube " +
-                     std::to_string(cube) + " corner " + std::to_string(o) + " f " +
-                     std::to_string(f));
-        EXPECT_LE(full.lower, f + eps);
-        EXPECT_LE(batch.lower, f + eps);
-        EXPECT_LE(narrowed.lower, f + eps);
-        EXPECT_LE(near.lower, f + eps);
-        EXPECT_LE(tree.query_among(x, near, 2 * T, HUGE_VAL).lower, f + eps);
-        EXPECT_GE(full.lower, f - leaf - slop);
-        EXPECT_GE(batch.lower, f - leaf - slack - slop);
-        EXPECT_GE(narrowed.lower, f - leaf - slack - slop);
-        EXPECT_GE(std::max(full.signed_upper, 0.0), f - eps);
-        EXPECT_GE(std::max(narrowed.signed_upper, 0.0), f - eps);
-        EXPECT_LE(full.signed_upper, f + leaf + eps);
-        ASSERT_GE(narrowed.node, 0);
-        EXPECT_NEAR(tree.node_distance(x, narrowed.node), narrowed.signed_upper, eps);
-        outside += f > 0;
-      }
+    for (int i = 0; i < 64; ++i) {
+      const V3 x = centre + h * V3(i % 4 - 1.5, i / 4 % 4 - 1.5, i / 16 - 1.5);
+      const double f = measured_distance(m, body, x);
+      const auto full = tree.query(x, -HUGE_VAL);
+      SCOPED_TRACE(std::string(c.body) + " trial " + std::to_string(trial) + " point " +
+                   std::to_string(i) + " f " + std::to_string(f));
+      EXPECT_LE(full.lower, f + eps);
+      EXPECT_GE(full.lower, f - leaf - slop);
+      EXPECT_GE(std::max(full.signed_upper, 0.0), f - eps);
+      EXPECT_LE(full.signed_upper, f + leaf + eps);
+      ASSERT_GE(full.node, 0);
+      EXPECT_NEAR(tree.node_distance(x, full.node), full.signed_upper, eps);
+      outside += f > 0;
     }
   }
   EXPECT_GT(outside, 300);  // most points are outside V, where the bounds are measured

@@ -31,15 +31,14 @@ struct SweptVolume {
   std::size_t measured_vertices = 0;
   double volume_lower = 0, volume_upper = 0;
   double grid_step = 0;           ///< the smallest edge of a cell the surface crosses
-  double largest_cell = 0;        ///< and the largest (the lattice: both its edge)
-  bool adaptive = false;          ///< the octree's mesh (convex bodies), not the lattice's
-  std::size_t surface_cells = 0;  ///< adaptive: the octree's leaves the surface crosses
-  std::size_t hull_pieces = 0;    ///< adaptive: the convex pieces that cover V
+  double largest_cell = 0;        ///< and the largest
+  std::size_t surface_cells = 0;  ///< the octree's leaves the surface crosses
+  std::size_t hull_pieces = 0;    ///< the pieces of time that cover V (per part of a mesh)
   double level = 0;               ///< the level of the distance bound the surface follows
   std::size_t time_pieces = 0;    ///< leaves of the parameter tree
   double piece_delta = 0;         ///< their largest certified radius of motion
   std::size_t distance_queries = 0;
-  int rounds = 0;  ///< lattices tried, or the octree's rounds of refinement
+  int rounds = 0;  ///< the octree's rounds of refinement
   /// VolumeRounding::float32: the largest distance a vertex may move when its coordinates
   /// are rounded to float32; the mesh encloses V grown by it, and the vertices (and so
   /// distance_bound) are the rounded ones. 0 when the vertices are written as doubles.

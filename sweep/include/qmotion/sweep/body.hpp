@@ -337,7 +337,8 @@ inline void index_mesh(Body& body) {
 /// Whether the body is convex: every kind but the mesh (which may be, but is not assumed).
 inline bool is_convex(const Body& body) { return body.kind != Body::Kind::mesh; }
 
-/// The signed distance from x to a convex body (is_convex), and a subgradient g of it at x:
+/// The signed distance from x to a convex body (is_convex), and a subgradient g of it at x
+/// (a mesh: see below):
 /// sd(y) >= sd(x) + g . (y - x) for every y, since the signed distance to a convex set is a
 /// convex function. g is the unit vector from the nearest point outside, the outward normal
 /// of the nearest face (or supporting plane) inside, and 0 where every direction is a
@@ -386,8 +387,15 @@ inline double signed_distance(const Body& body, const Eigen::Vector3d& x, Eigen:
       g.z() = d[1];
       return v;
     }
-    case K::mesh:
-      return signed_distance(body, x);
+    case K::mesh: {
+      // Not convex: g, the unit vector from the nearest point (negated inside), is a
+      // direction to try, not a subgradient.
+      if (!body.index) return signed_distance(body, x);
+      Eigen::Vector3d near;
+      const double d = body.index->signed_distance(x, &near);
+      if (std::abs(d) > 0 && std::isfinite(d)) g = (x - near) / d;
+      return d;
+    }
   }
   return HUGE_VAL;
 }

@@ -1,7 +1,7 @@
-// <qmotion/sweep/hull_pieces.hpp>: the space a convex body sweeps, covered by convex pieces
-// of second order (the hull of the body at two times, grown by the motion's certified
-// deviation from the linear blend), and a certificate that a triangle stays clear of all of
-// them (docs/guide/volume.md, "The adaptive mesh").
+// <qmotion/sweep/hull_pieces.hpp>: the space a body's boundary sweeps, covered by convex
+// pieces of second order (the hull of a convex part at two times, grown by the motion's
+// certified deviation from the linear blend), and a certificate that a triangle stays clear
+// of all of them (docs/guide/volume.md, "The adaptive mesh").
 #pragma once
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -62,39 +62,31 @@ inline Eigen::Vector3d support_point(const Body& body, const Eigen::Vector3d& u)
 /// triangle's normal first, then GJK's (Gilbert, Johnson, Keerthi 1988) on the triangle and
 /// C, whose support point is the placed body's of the larger hi.
 ///
+/// A closed mesh body B is not convex: the pieces then cover what its boundary sweeps, part
+/// by part, each part the hull of a few of its triangles (a tree of them, `Part`). A
+/// triangle clear of that is outside V = U M(t) B when one of its points lies outside
+/// M(t0) B for one t0: a point that never meets M(t) dB is inside
+/// M(t) B for every t or for none (docs/geometry.md, "The adaptive mesh").
+///
 /// The pieces sit under a binary tree over the keys: a node over keys lo..hi holds the
 /// placement of its middle key Mm and a reach, max delta + max_j lever_norm(Mj - Mm, rho)
-/// (detail::lever_norm: |(Mj - Mm)(1, x)| for |x| <= rho), so its pieces lie in Mm K grown by
-/// the reach, and a ball about Mm's body ball.
+/// (detail::lever_norm: |(Mj - Mm)(1, x)| for |x| <= rho), so the pieces of a part P lie in
+/// Mm P grown by the reach, and in a ball about Mm's placement of P's ball. A test walks
+/// the pairs (key node, part), halving the wider of the two.
 class HullPieces {
  public:
   struct Stats {
     std::size_t node_tests = 0, piece_tests = 0, gjk = 0;
   };
 
-  /// Errc::invalid_input for a body that is not convex; Errc::numerical_failure from
-  /// place_keyframes.
+  /// Errc::numerical_failure from place_keyframes. A mesh body must be closed and oriented
+  /// (sweep::validate).
   HullPieces(const qmotion::Motion& m, const Body& body, double delta_max)
       : body_(body), rho_(radius(body)) {
-    if (!is_convex(body))
-      throw Error(Errc::invalid_input, "hull pieces: the body " + body.spec + " is not convex");
-    // A ball about the body: the sphere's and the box's own; about the middle of a revolved
-    // body's axis, the farther of its top rim and of its bottom torus (or disk).
-    using K = Body::Kind;
-    if (body.kind == K::sphere) {
-      ball_radius_ = body.r;
-    } else if (body.kind == K::box) {
-      ball_radius_ = radius(body);
-    } else {
-      const bool cyl = body.kind == K::cylinder;
-      const double R = cyl ? body.r : body.D / 2, L = cyl ? body.h : body.L;
-      const double rc = cyl || body.kind == K::flat_cutter ? 0.0
-                        : body.kind == K::ball_cutter      ? R
-                                                           : body.rc;
-      ball_centre_ = Eigen::Vector3d(0, 0, L / 2);
-      ball_radius_ = std::max(std::hypot(R, L / 2), std::hypot(R - rc, L / 2 - rc) + rc);
-    }
-    ball_radius_ *= 1 + 1e-12;
+    if (is_convex(body))
+      parts_.push_back(convex_ball(body));
+    else
+      build_parts(body.mesh);
     KeyframeOptions opt;
     opt.tol = delta_max;
     opt.radius = rho_;
@@ -128,6 +120,8 @@ class HullPieces {
   }
 
   std::size_t size() const { return delta_.size(); }
+  /// The body's parts: 1 for a convex body, leaves of the triangles' tree for a mesh.
+  std::size_t parts() const { return leaves_; }
   /// How much wider a piece's hull may be than the body's sweep over it (see the
   /// constructor): a turn's measure times the body's diameter / 4.
   double turn_excess(const Keyframe& k0, const Keyframe& k1) const {
@@ -135,66 +129,185 @@ class HullPieces {
     if (body_.kind == K::sphere) return 0;
     const Eigen::Matrix3d R0 = k0.rotation.normalized().toRotationMatrix(),
                           R1 = k1.rotation.normalized().toRotationMatrix();
-    const double turn = body_.kind == K::box ? (R1 - R0).norm() : (R1.col(2) - R0.col(2)).norm();
-    return turn * 2 * ball_radius_ / 4;
+    const bool revolved = body_.kind != K::box && body_.kind != K::mesh;
+    const double turn = revolved ? (R1.col(2) - R0.col(2)).norm() : (R1 - R0).norm();
+    return turn * 2 * parts_.front().radius / 4;
   }
   double largest_delta() const { return largest_; }
 
-  /// Whether the triangle (a, b, c) is certainly farther than margin from V. `dirs`, unit
+  /// Whether the triangle (a, b, c) is certainly farther than margin from what the body
+  /// sweeps (a convex body), or from what its boundary sweeps (a mesh). `dirs`, unit
   /// vectors, are the directions tried first (the surface's normal about the triangle, the
   /// triangle's own); GJK's after them.
   bool clear(const std::array<Eigen::Vector3d, 3>& tri, const std::array<Eigen::Vector3d, 2>& dirs,
              double margin, Stats* stats = nullptr) const {
-    int stack[64], top = 0;
-    stack[top++] = 0;
+    // Each pair popped pushes two whose depths add one more: the stack holds at most the
+    // two trees' depths added (build() and split_part() halve, so each is a log2 of its size).
+    std::pair<int, int> stack[kStack];
+    int top = 0;
+    stack[top++] = {0, 0};
     // The directions tried: the two given, and the last that GJK found (consecutive pieces
     // are apart along much the same direction).
     Directions d;
     for (int i = 0; i < 2; ++i) d.add(dirs[static_cast<std::size_t>(i)], tri);
+    const double slack = margin + rounding_;
+    // A ball about the triangle: pairs whose ball lies beyond it need no nearest point.
+    const Eigen::Vector3d tc = (tri[0] + tri[1] + tri[2]) / 3;
+    const double tr = std::sqrt(std::max({(tri[0] - tc).squaredNorm(), (tri[1] - tc).squaredNorm(),
+                                          (tri[2] - tc).squaredNorm()})) *
+                      (1 + 1e-12);
     while (top > 0) {
-      const Node& nd = nodes_[static_cast<std::size_t>(stack[--top])];
+      const auto [ki, pi] = stack[--top];
+      const Node& nd = nodes_[static_cast<std::size_t>(ki)];
+      const Part& P = parts_[static_cast<std::size_t>(pi)];
       if (stats) ++stats->node_tests;
-      const double need = nd.reach + margin + rounding_;
-      if ((detail::closest_on_triangle(nd.centre, tri[0], tri[1], tri[2]) - nd.centre).norm() >
-          nd.radius + margin + rounding_)
-        continue;
-      bool apart = false;
-      for (int i = 0; i < d.n && !apart; ++i) apart = d.low[i] - support(nd.key, d.n_[i]) > need;
-      if (apart) continue;
-      if (nd.child[0] < 0) {
+      const Map& Mm = keys_[static_cast<std::size_t>(nd.key)];
+      const Eigen::Vector3d c = Mm.col(0) + Mm.rightCols<3>() * P.centre;
+      const double ball = P.radius + nd.reach + slack;
+      if ((c - tc).norm() > ball + tr) continue;
+      if ((detail::closest_on_triangle(c, tri[0], tri[1], tri[2]) - c).norm() > ball) continue;
+      const bool leaf_part = P.child < 0, leaf_node = nd.child[0] < 0;
+      if (leaf_part) {
+        bool apart = false;
+        for (int i = 0; i < d.n && !apart; ++i)
+          apart = d.low[i] - support(nd.key, P, d.n_[i]) > nd.reach + slack;
+        if (apart) continue;
+      }
+      if (leaf_part && leaf_node) {
         if (stats) ++stats->piece_tests;
-        if (!piece_clear(nd.lo, tri, d, margin, stats)) return false;
+        if (!piece_clear(nd.lo, P, tri, d, margin, stats)) return false;
         continue;
       }
-      stack[top++] = nd.child[0];
-      stack[top++] = nd.child[1];
+      if (!leaf_part && (leaf_node || P.radius >= nd.reach)) {
+        stack[top++] = {ki, P.child};
+        stack[top++] = {ki, P.child + 1};
+      } else {
+        stack[top++] = {nd.child[0], pi};
+        stack[top++] = {nd.child[1], pi};
+      }
     }
     return true;
   }
 
  private:
   using Map = Eigen::Matrix<double, 3, 4>;
+  static constexpr int kStack = 160;  ///< more than two trees of 2^64 leaves need
   struct Node {
     int lo = 0, hi = 0, key = 0;  ///< pieces lo..hi-1, keys lo..hi; key: the middle one
-    double reach = 0, radius = 0;
-    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    double reach = 0;
     int child[2] = {-1, -1};
   };
+  /// A part of the body, in the moving space: a ball about it, and its children (child,
+  /// child + 1) or, a leaf, its points points_[first, first + count), whose hull it is (count
+  /// 0: the whole convex body, through support_point; -1: an inner node).
+  struct Part {
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    double radius = 0;
+    int child = -1, first = 0, count = 0;
+  };
 
-  /// hi(n): the support value of the body placed by key k.
-  double support(int k, const Eigen::Vector3d& n) const {
+  /// A ball about a convex body: the sphere's and the box's own; about the middle of a
+  /// revolved body's axis, the farther of its top rim and of its bottom torus (or disk).
+  static Part convex_ball(const Body& body) {
+    using K = Body::Kind;
+    Part p;
+    if (body.kind == K::sphere) {
+      p.radius = body.r;
+    } else if (body.kind == K::box) {
+      p.radius = radius(body);
+    } else {
+      const bool cyl = body.kind == K::cylinder;
+      const double R = cyl ? body.r : body.D / 2, L = cyl ? body.h : body.L;
+      const double rc = cyl || body.kind == K::flat_cutter ? 0.0
+                        : body.kind == K::ball_cutter      ? R
+                                                           : body.rc;
+      p.centre = Eigen::Vector3d(0, 0, L / 2);
+      p.radius = std::max(std::hypot(R, L / 2), std::hypot(R - rc, L / 2 - rc) + rc);
+    }
+    p.radius *= 1 + 1e-12;
+    return p;
+  }
+
+  /// The parts of a mesh: its triangles halved at the median of their centroids along the
+  /// longest axis, down to one; a leaf holds its triangle's corners. (A leaf of several
+  /// triangles about a concave edge would cover the space outside it, which the surface
+  /// must not enter.)
+  void build_parts(const TriangleMesh& mesh) {
+    std::vector<int> order(mesh.triangles.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+    parts_.emplace_back();
+    leaves_ = 0;
+    split_part(mesh, order, 0, 0, order.size());
+  }
+  void split_part(const TriangleMesh& mesh, std::vector<int>& order, std::size_t at, std::size_t a,
+                  std::size_t b) {
+    auto corner = [&](std::size_t i, int k) -> const Eigen::Vector3d& {
+      return mesh.vertices[static_cast<std::size_t>(
+          mesh.triangles[static_cast<std::size_t>(order[i])][static_cast<std::size_t>(k)])];
+    };
+    Eigen::AlignedBox3d box, centres;
+    for (std::size_t i = a; i < b; ++i) {
+      for (int k = 0; k < 3; ++k) box.extend(corner(i, k));
+      centres.extend(Eigen::Vector3d((corner(i, 0) + corner(i, 1) + corner(i, 2)) / 3));
+    }
+    Part p;
+    p.count = -1;
+    p.centre = box.center();
+    for (std::size_t i = a; i < b; ++i)
+      for (int k = 0; k < 3; ++k) p.radius = std::max(p.radius, (corner(i, k) - p.centre).norm());
+    p.radius *= 1 + 1e-12;
+    if (b - a <= 1) {
+      p.first = static_cast<int>(points_.size());
+      for (int k = 0; k < 3; ++k) points_.push_back(corner(a, k));
+      p.count = 3;
+      parts_[at] = p;
+      ++leaves_;
+      return;
+    }
+    Eigen::Index axis = 0;
+    centres.sizes().maxCoeff(&axis);
+    const std::size_t mid = (a + b) / 2;
+    auto key = [&](int t) {
+      const auto& tr = mesh.triangles[static_cast<std::size_t>(t)];
+      double s = 0;
+      for (int v : tr) s += mesh.vertices[static_cast<std::size_t>(v)](axis);
+      return s;
+    };
+    std::nth_element(order.begin() + static_cast<std::ptrdiff_t>(a),
+                     order.begin() + static_cast<std::ptrdiff_t>(mid),
+                     order.begin() + static_cast<std::ptrdiff_t>(b),
+                     [&](int s, int t) { return key(s) < key(t); });
+    p.child = static_cast<int>(parts_.size());
+    parts_[at] = p;
+    parts_.emplace_back();
+    parts_.emplace_back();
+    split_part(mesh, order, static_cast<std::size_t>(p.child), a, mid);
+    split_part(mesh, order, static_cast<std::size_t>(p.child) + 1, mid, b);
+  }
+
+  /// The part's point farthest along u (a moving-space direction).
+  Eigen::Vector3d part_support(const Part& P, const Eigen::Vector3d& u) const {
+    if (P.count == 0) return support_point(body_, u);
+    const auto* q = points_.data() + P.first;
+    int best = 0;
+    for (int i = 1; i < P.count; ++i)
+      if (u.dot(q[i]) > u.dot(q[best])) best = i;
+    return q[best];
+  }
+  /// hi(n): the support value of the part placed by key k.
+  double support(int k, const Part& P, const Eigen::Vector3d& n) const {
     const Map& M = keys_[static_cast<std::size_t>(k)];
     const Eigen::Vector3d u = M.rightCols<3>().transpose() * n;
-    return n.dot(M.col(0)) + u.dot(support_point(body_, u));
+    return n.dot(M.col(0)) + u.dot(part_support(P, u));
   }
-  /// The support point of C = conv(M_k K u M_k+1 K) along d.
-  Eigen::Vector3d piece_support(int k, const Eigen::Vector3d& d) const {
+  /// The support point of C = conv(M_k P u M_k+1 P) along d.
+  Eigen::Vector3d piece_support(int k, const Part& P, const Eigen::Vector3d& d) const {
     Eigen::Vector3d best = Eigen::Vector3d::Zero();
     double most = -HUGE_VAL;
     for (int j = k; j <= k + 1; ++j) {
       const Map& M = keys_[static_cast<std::size_t>(j)];
       const Eigen::Vector3d y =
-          M.col(0) + M.rightCols<3>() * support_point(body_, M.rightCols<3>().transpose() * d);
+          M.col(0) + M.rightCols<3>() * part_support(P, M.rightCols<3>().transpose() * d);
       if (d.dot(y) > most) {
         most = d.dot(y);
         best = y;
@@ -215,19 +328,19 @@ class HullPieces {
     }
   };
 
-  bool piece_clear(int k, const std::array<Eigen::Vector3d, 3>& tri, Directions& dirs,
-                   double margin, Stats* stats) const {
+  bool piece_clear(int k, const Part& P, const std::array<Eigen::Vector3d, 3>& tri,
+                   Directions& dirs, double margin, Stats* stats) const {
     const double need = delta_[static_cast<std::size_t>(k)] + margin + rounding_;
     for (int i = dirs.n - 1; i >= 0; --i) {
       const Eigen::Vector3d& n = dirs.n_[i];
-      if (dirs.low[i] - std::max(support(k, n), support(k + 1, n)) > need) return true;
+      if (dirs.low[i] - std::max(support(k, P, n), support(k + 1, P, n)) > need) return true;
     }
     if (stats) ++stats->gjk;
     // GJK on D = triangle - C: v, the point of the simplex W nearest the origin, is a point
     // of D, so |v| >= dist; w, D's point least along v, gives the plane v . x >= v . w that
     // holds D: dist >= v . w / |v|, which is the separation along v / |v| above.
     Simplex W;
-    Eigen::Vector3d v = (tri[0] + tri[1] + tri[2]) / 3 - piece_support(k, -dirs.n_[0]);
+    Eigen::Vector3d v = (tri[0] + tri[1] + tri[2]) / 3 - piece_support(k, P, -dirs.n_[0]);
     for (int it = 0; it < 48; ++it) {
       const double vn = v.norm();
       if (!(vn > need)) return false;
@@ -235,7 +348,7 @@ class HullPieces {
       for (int i = 1; i < 3; ++i)
         if (v.dot(tri[static_cast<std::size_t>(i)]) < v.dot(tri[static_cast<std::size_t>(lo)]))
           lo = i;
-      const Eigen::Vector3d w = tri[static_cast<std::size_t>(lo)] - piece_support(k, v);
+      const Eigen::Vector3d w = tri[static_cast<std::size_t>(lo)] - piece_support(k, P, v);
       // d . w: the triangle's least extent along d less C's support value there (the
       // support point above is C's farthest along v, so along d).
       const Eigen::Vector3d d = v / vn;
@@ -334,8 +447,6 @@ class HullPieces {
       lever = std::max(lever, detail::lever_norm(keys_[static_cast<std::size_t>(j)] - Mm, rho_));
     for (int k = lo; k < hi; ++k) delta = std::max(delta, delta_[static_cast<std::size_t>(k)]);
     nd.reach = (lever + delta) * (1 + 1e-12);
-    nd.centre = Mm.col(0) + Mm.rightCols<3>() * ball_centre_;
-    nd.radius = ball_radius_ + nd.reach;
     const int at = static_cast<int>(nodes_.size());
     nodes_.push_back(nd);
     if (hi - lo > 1) {
@@ -349,8 +460,9 @@ class HullPieces {
 
   const Body& body_;
   double rho_;
-  Eigen::Vector3d ball_centre_ = Eigen::Vector3d::Zero();
-  double ball_radius_ = 0;
+  std::vector<Part> parts_;
+  std::vector<Eigen::Vector3d> points_;
+  std::size_t leaves_ = 1;
   std::vector<Map> keys_;
   std::vector<double> delta_;
   double largest_ = 0, rounding_ = 0;

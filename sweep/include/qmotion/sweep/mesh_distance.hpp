@@ -118,9 +118,12 @@ class MeshIndex {
     }
   }
 
-  /// The signed distance from x: negative inside.
-  double signed_distance(const Eigen::Vector3d& x) const {
-    double best = HUGE_VAL;
+  /// The signed distance from x: negative inside. `nearest`, when given, is set to the
+  /// mesh's point nearest x. With a cap, only triangles nearer than it are searched, and
+  /// HUGE_VAL says that there are none (|distance| >= cap, of either sign).
+  double signed_distance(const Eigen::Vector3d& x, Eigen::Vector3d* nearest = nullptr,
+                         double cap = HUGE_VAL) const {
+    double best = cap * cap;
     int tri = -1, where = 6;
     Eigen::Vector3d near = x;
     thread_local std::vector<int> stack;
@@ -164,6 +167,7 @@ class MeshIndex {
     else
       N = face_[t];
     const double d = std::sqrt(best);
+    if (nearest) *nearest = near;
     return (x - near).dot(N) < 0 ? -d : d;
   }
 

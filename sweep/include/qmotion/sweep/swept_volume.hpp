@@ -29,49 +29,6 @@ struct VolumeDistance {
   int node = -1;          ///< the tree's node whose placement gave signed_upper
 };
 
-/// A convex lower bound of a closed mesh body's signed distance, for the plane bounds of the
-/// tree's leaves: the polytope P = { x : n_i . x <= b_i } about the mesh (n_i the 26
-/// directions to the faces, edges and corners of a cube, b_i the mesh's largest n_i . v,
-/// raised by 1e-12 of its radius for rounding). L(x) = max_i (n_i . x - b_i) is convex, with
-/// the maximising n_i as a subgradient, and L <= sd_P <= sd_body: outside P every point p of P
-/// has |x - p| >= n_i . (x - p) >= n_i . x - b_i; inside, L is minus the distance to P's
-/// nearest face plane; and P holds the body, so sd_P <= sd_body everywhere.
-class Dop {
- public:
-  Dop() = default;
-  explicit Dop(const TriangleMesh& m) {
-    double rho = 0;
-    for (const auto& v : m.vertices) rho = std::max(rho, v.norm());
-    for (int a = -1; a <= 1; ++a)
-      for (int b = -1; b <= 1; ++b)
-        for (int c = -1; c <= 1; ++c) {
-          if (a == 0 && b == 0 && c == 0) continue;
-          const Eigen::Vector3d n = Eigen::Vector3d(a, b, c).normalized();
-          double most = -HUGE_VAL;
-          for (const auto& v : m.vertices) most = std::max(most, n.dot(v));
-          n_.push_back(n);
-          b_.push_back(most + 1e-12 * rho);
-        }
-  }
-  /// L(x), and g its subgradient there.
-  double lower(const Eigen::Vector3d& x, Eigen::Vector3d& g) const {
-    g.setZero();
-    double best = -HUGE_VAL;
-    for (std::size_t i = 0; i < n_.size(); ++i) {
-      const double v = n_[i].dot(x) - b_[i];
-      if (v > best) {
-        best = v;
-        g = n_[i];
-      }
-    }
-    return best;
-  }
-
- private:
-  std::vector<Eigen::Vector3d> n_;
-  std::vector<double> b_;
-};
-
 /// A binary tree over the motion's parameter: every node is an interval [t0, t1] of one
 /// segment, with the body placed at its middle, M(tm) K, and a radius Delta such that every
 /// point of the body stays within Delta of where M(tm) puts it over the interval:
@@ -99,14 +56,9 @@ class SweptVolumeTree {
   /// Errc::numerical_failure for a rational motion with a pole on its interval, or when a
   /// node narrower than 1e-12 of the interval cannot reach the leaf size.
   SweptVolumeTree(const qmotion::Motion& m, const Body& body, double leaf_delta)
-      : motion_(m),
-        body_(body),
-        convex_(is_convex(body)),
-        rho_(radius(body)),
-        bound_(m, radius(body), 4),
-        leaf_(leaf_delta) {
-    if (!convex_) dop_ = Dop(body.mesh);
+      : motion_(m), body_(body), rho_(radius(body)), bound_(m, radius(body), 4), leaf_(leaf_delta) {
     ball_centre_ = ball_centre(body);
+    for (const auto& v : body.mesh.vertices) mesh_box_.extend(v);
     ball_radius_ = 0;
     for (const auto& v : triangulate(body, 1e-3 * rho_).vertices)
       ball_radius_ = std::max(ball_radius_, (v - ball_centre_).norm());
@@ -163,7 +115,7 @@ class SweptVolumeTree {
         out.lower = std::min(out.lower, ball);
         continue;
       }
-      const double sd = signed_distance(body_, n.Rt * (q - n.p));
+      const double sd = capped_distance(n.Rt * (q - n.p), best + n.delta);
       const double lb = std::max(ball, sd - n.delta);
       if (sd < best) {
         best = sd;
@@ -204,179 +156,6 @@ class SweptVolumeTree {
     return signed_distance(body_, n.Rt * (q - n.p));
   }
 
-  /// The leaves that can hold the nearest placement for some point within r of c, for a
-  /// batch of queries about c (see candidates()), and what bounds them for such a point.
-  struct Candidates {
-    /// The smallest lb - r of the nodes left out: a lower bound, for every x within r of c,
-    /// of its distance to the part of V they sweep.
-    double rest = HUGE_VAL;
-    /// narrow(): the signed distance from c to the body placed by best_node (-1: none), an
-    /// upper bound of f(c), and the least lower bound for the ball, lower.
-    double best = HUGE_VAL, lower = HUGE_VAL;
-    int best_node = -1;
-    std::vector<int> node;
-    std::vector<double> bound;  ///< the leaf's bound at c less r: a lower bound for every x
-    /// The leaf's plane bound: base + g . x <= sd_K(M(tm)^-1 x) - Delta for every x, with g
-    /// the subgradient at c of the signed distance (a convex body: see signed_distance with
-    /// g) or of its polytope bound (a mesh: Dop).
-    std::vector<double> base, gx, gy, gz;
-    void clear() {
-      node.clear();
-      bound.clear();
-      base.clear();
-      gx.clear();
-      gy.clear();
-      gz.clear();
-    }
-  };
-
-  /// The leaves that can hold the nearest placement for some point within r of c, for a
-  /// batch of queries about c. A node whose bound at c, lb, is at least best + 2 r (best: the
-  /// smallest signed distance from c to a placement seen) is left out: for x within r of c
-  /// its bound is at least lb - r >= best + r, and best + r bounds x's distance from above.
-  /// Each leaf also gets a plane: for a convex body through its signed distance at c along a
-  /// subgradient there, a lower bound of the signed distance everywhere, exact to first order
-  /// about c; for a mesh the same of its polytope bound (Dop), exact to first order where the
-  /// mesh's nearest point lies on that polytope's boundary.
-  void candidates(const Eigen::Vector3d& c, double r, Candidates& out) const {
-    out.clear();
-    thread_local std::vector<std::pair<int, double>> stack;  // node, its bound at c
-    struct Found {
-      int node;
-      double lb, pv;  // the leaf's bound at c; its plane's value at c
-      Eigen::Vector3d g;
-    };
-    thread_local std::vector<Found> found;
-    stack.clear();
-    found.clear();
-    double best = HUGE_VAL, left_out = HUGE_VAL;
-    for (auto it = roots_.rbegin(); it != roots_.rend(); ++it) stack.emplace_back(*it, -HUGE_VAL);
-    while (!stack.empty()) {
-      const auto [i, parent_lb] = stack.back();
-      stack.pop_back();
-      if (parent_lb >= best + 2 * r) {
-        left_out = std::min(left_out, parent_lb);
-        continue;
-      }
-      const Node& n = nodes_[static_cast<std::size_t>(i)];
-      const double ball = (c - n.centre).norm() - ball_radius_ - n.delta;
-      if (ball >= best + 2 * r) {
-        left_out = std::min(left_out, ball);
-        continue;
-      }
-      const bool leaf = n.child[0] < 0;
-      Eigen::Vector3d g = Eigen::Vector3d::Zero();
-      const Eigen::Vector3d local = n.Rt * (c - n.p);
-      const double sd =
-          leaf && convex_ ? signed_distance(body_, local, g) : signed_distance(body_, local);
-      // The plane's value at c: the signed distance itself for a convex body, else the
-      // polytope bound (Dop), whose subgradient is g.
-      const double pv = leaf && !convex_ ? dop_.lower(local, g) : sd;
-      best = std::min(best, sd);
-      const double lb = std::max(ball, sd - n.delta);
-      if (lb >= best + 2 * r) {
-        left_out = std::min(left_out, lb);
-        continue;
-      }
-      if (leaf) {
-        found.push_back({i, lb, pv, n.Rt.transpose() * g});
-        continue;
-      }
-      const Node &c0 = nodes_[static_cast<std::size_t>(n.child[0])],
-                 &c1 = nodes_[static_cast<std::size_t>(n.child[1])];
-      const bool first0 = (c - c0.centre).squaredNorm() < (c - c1.centre).squaredNorm();
-      stack.emplace_back(first0 ? n.child[1] : n.child[0], lb);
-      stack.emplace_back(first0 ? n.child[0] : n.child[1], lb);
-    }
-    // Leaves found before best fell far enough are left out now.
-    for (const auto& f : found) {
-      if (f.lb >= best + 2 * r) {
-        left_out = std::min(left_out, f.lb);
-        continue;
-      }
-      out.node.push_back(f.node);
-      out.bound.push_back(f.lb - r);
-      // Rounding: the plane is lowered by 1e-12 of the sizes it sums.
-      const double delta = nodes_[static_cast<std::size_t>(f.node)].delta;
-      const double gc = f.g.dot(c);
-      out.base.push_back(f.pv - delta - gc -
-                         1e-12 * (std::abs(f.pv) + std::abs(gc) + delta + r + rho_));
-      out.gx.push_back(f.g.x());
-      out.gy.push_back(f.g.y());
-      out.gz.push_back(f.g.z());
-    }
-    out.rest = left_out - r;
-  }
-
-  /// The candidates of a smaller batch, about c within r, whose ball lies in wide's: wide's
-  /// leaves less those that cannot hold the nearest placement for a point of the new ball.
-  /// Each leaf's bound for the ball is the larger of wide's and its plane at c less r; the
-  /// least is placed at c, best, and a leaf whose bound is at least best + r is left out (a
-  /// point of the ball is within best + r of that placement).
-  void narrow(const Candidates& wide, const Eigen::Vector3d& c, double r, Candidates& out) const {
-    out.clear();
-    out.rest = wide.rest;
-    const std::size_t n = wide.node.size();
-    thread_local std::vector<double> lb;
-    const std::size_t first = bounds_at(wide, c, r * (1 + 1e-12), lb);  // |g| <= 1 up to rounding
-    const double least = first < n ? lb[first] : HUGE_VAL;
-    out.best = HUGE_VAL;
-    out.best_node = -1;
-    out.lower = std::min(out.rest, least);
-    if (first == n) return;
-    const double best = node_distance(c, wide.node[first]);
-    out.best = best;
-    out.best_node = wide.node[first];
-    for (std::size_t k = 0; k < n; ++k) {
-      if (lb[k] >= best + r) {
-        out.rest = std::min(out.rest, lb[k]);
-        continue;
-      }
-      out.node.push_back(wide.node[k]);
-      out.bound.push_back(lb[k]);
-      out.base.push_back(wide.base[k]);
-      out.gx.push_back(wide.gx[k]);
-      out.gy.push_back(wide.gy[k]);
-      out.gz.push_back(wide.gz[k]);
-    }
-  }
-
-  /// What query(x) learns from the candidates of a batch about c (candidates(c, r, ...)), for
-  /// x within r of c. Every leaf has a lower bound at x without placing the body (its bound
-  /// at c less r, and its plane); the leaf with the least is placed first,
-  /// then every other whose bound is below what is known less `slack` (so that lower is at
-  /// most slack below what placing them all would give). It stops when a placement holds x
-  /// deeper than stop_depth.
-  VolumeDistance query_among(const Eigen::Vector3d& x, const Candidates& cands, double slack,
-                             double stop_depth) const {
-    VolumeDistance out;
-    const std::size_t n = cands.node.size();
-    thread_local std::vector<double> lin;
-    const std::size_t first = bounds_at(cands, x, 0, lin);
-    double known = cands.rest, skipped = HUGE_VAL, best = HUGE_VAL;
-    auto place = [&](std::size_t k) {
-      const int i = cands.node[k];
-      const double sd = node_distance(x, i);
-      known = std::min(known, std::max(lin[k], sd - nodes_[static_cast<std::size_t>(i)].delta));
-      if (sd < best) {
-        best = sd;
-        out.node = i;
-      }
-    };
-    if (first < n) place(first);
-    for (std::size_t k = 0; k < n && best > -stop_depth; ++k) {
-      if (k == first) continue;
-      if (lin[k] >= std::min(known, std::max(best, 0.0)) - slack)
-        skipped = std::min(skipped, lin[k]);
-      else
-        place(k);
-    }
-    out.signed_upper = best;
-    if (out.node >= 0) found_at(out, out.node);
-    out.lower = std::max(0.0, std::min({known, skipped, std::max(best, 0.0)}));
-    return out;
-  }
-
   /// The signed distance from q to the body placed by the exact motion at t.
   double placed_distance(const Eigen::Vector3d& q, double t) const {
     const Eigen::Matrix4d f = motion_.frame(t);
@@ -384,30 +163,15 @@ class SweptVolumeTree {
   }
 
  private:
-  /// Every candidate's lower bound for the points within `reach` of x: the larger of its
-  /// bound and its plane at x less reach (a plane's slope |g| is at most
-  /// one). The loop runs over plain arrays, so that it vectorises. Returns the index of the
-  /// least (the candidates' number when there are none).
-  std::size_t bounds_at(const Candidates& cands, const Eigen::Vector3d& x, double reach,
-                        std::vector<double>& out) const {
-    const std::size_t n = cands.node.size();
-    out.resize(n);
-    double* const l = out.data();
-    const double *bound = cands.bound.data(), *base = cands.base.data(), *gx = cands.gx.data(),
-                 *gy = cands.gy.data(), *gz = cands.gz.data();
-    const double x0 = x.x(), x1 = x.y(), x2 = x.z();
-    for (std::size_t k = 0; k < n; ++k) {
-      const double p = base[k] + gx[k] * x0 + gy[k] * x1 + gz[k] * x2 - reach;
-      l[k] = bound[k] > p ? bound[k] : p;
-    }
-    std::size_t first = n;
-    double least = HUGE_VAL;
-    for (std::size_t k = 0; k < n; ++k)
-      if (l[k] < least) {
-        least = l[k];
-        first = k;
-      }
-    return first;
+  /// The body's signed distance at a local point, or, for a mesh, cap when it is certainly
+  /// at least cap (> 0): no triangle lies nearer than cap and the point is outside the
+  /// mesh's box. A query needs no more of a node whose distance reaches best + Delta.
+  double capped_distance(const Eigen::Vector3d& local, double cap) const {
+    if (!body_.index || !(cap > 0) || !(cap < HUGE_VAL)) return signed_distance(body_, local);
+    const double d = body_.index->signed_distance(local, nullptr, cap);
+    if (d < HUGE_VAL) return d;
+    if (mesh_box_.exteriorDistance(local) > 0) return cap;
+    return signed_distance(body_, local);
   }
 
   static Eigen::Vector3d ball_centre(const Body& b) {
@@ -473,13 +237,12 @@ class SweptVolumeTree {
   static constexpr std::size_t max_nodes = 1 << 22;
   const qmotion::Motion& motion_;
   const Body& body_;
-  bool convex_;
-  Dop dop_;  ///< a non-convex body's polytope bound
   double rho_;
   KeyframeBound bound_;
   double leaf_;
   Eigen::Vector3d ball_centre_ = Eigen::Vector3d::Zero();
   double ball_radius_ = 0;
+  Eigen::AlignedBox3d mesh_box_;  ///< a mesh body's vertices' box (empty for the others)
   std::vector<Node> nodes_;
   std::vector<int> roots_;
   std::size_t leaves_ = 0;
