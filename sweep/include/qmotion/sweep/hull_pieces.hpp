@@ -162,7 +162,8 @@ class HullPieces {
       const Part& P = parts_[static_cast<std::size_t>(pi)];
       if (stats) ++stats->node_tests;
       const Map& Mm = keys_[static_cast<std::size_t>(nd.key)];
-      const Eigen::Vector3d c = Mm.col(0) + Mm.rightCols<3>() * P.centre;
+      const Eigen::Vector3d c =
+          pi == 0 ? nd.centre : Eigen::Vector3d(Mm.col(0) + Mm.rightCols<3>() * P.centre);
       const double ball = P.radius + nd.reach + slack;
       if ((c - tc).norm() > ball + tr) continue;
       if ((detail::closest_on_triangle(c, tri[0], tri[1], tri[2]) - c).norm() > ball) continue;
@@ -195,6 +196,7 @@ class HullPieces {
   struct Node {
     int lo = 0, hi = 0, key = 0;  ///< pieces lo..hi-1, keys lo..hi; key: the middle one
     double reach = 0;
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< the placed centre of the root part
     int child[2] = {-1, -1};
   };
   /// A part of the body, in the moving space: a ball about it, and its children (child,
@@ -447,6 +449,7 @@ class HullPieces {
       lever = std::max(lever, detail::lever_norm(keys_[static_cast<std::size_t>(j)] - Mm, rho_));
     for (int k = lo; k < hi; ++k) delta = std::max(delta, delta_[static_cast<std::size_t>(k)]);
     nd.reach = (lever + delta) * (1 + 1e-12);
+    nd.centre = Mm.col(0) + Mm.rightCols<3>() * parts_.front().centre;
     const int at = static_cast<int>(nodes_.size());
     nodes_.push_back(nd);
     if (hi - lo > 1) {
