@@ -420,16 +420,12 @@ class Mesher {
       root[static_cast<std::size_t>(find(t[1]))] = find(t[0]);
       root[static_cast<std::size_t>(find(t[2]))] = find(t[0]);
     }
-    const Eigen::Matrix4d f = motion_.frame(motion_.a());
-    const Eigen::Matrix3d R = f.block<3, 3>(1, 1);
     for (std::size_t v = 0; v < root.size(); ++v) {
       if (find(static_cast<int>(v)) != static_cast<int>(v)) continue;
-      const Eigen::Vector3d x = R.transpose() * (out.vertices[v] - f.block<3, 1>(1, 0));
-      if (!(sweep::signed_distance(tree_.body(), x) > 0))
+      if (!(tree_.placed_distance(out.vertices[v], motion_.a()) > 0))
         throw Error(Errc::numerical_failure,
                     motion_.label() + ": a sheet of the enclosing mesh lies inside the body " +
-                        tree_.body().spec + " (at " + kernel::detail::format_double(x.norm()) +
-                        " from its origin)");
+                        tree_.body().spec + " at the start (its vertex " + std::to_string(v) + ")");
     }
   }
 
@@ -476,7 +472,7 @@ EnclosingMesh adaptive_mesh(const Motion& motion, const sweep::SweptVolumeTree& 
   // (a convex combination of its vertices): the triangles are certified clear of V by e, and
   // the vertices within T - e (docs/guide/volume.md, "What is written is what was
   // certified").
-  const double e = rounding.float32 ? float32_written(box, T, 0, rounding) : 0.0;
+  const double e = rounding.float32 ? float32_written(box, T, rounding) : 0.0;
   if (e > 0.05 * T) refuse_float32(motion, e, T, rounding);
   // Rounded, two vertices of the surface near one corner of a tetrahedron could fall on one
   // point: the corners' values are kept 8 e (then 32 e, 128 e) from the level, which keeps

@@ -60,10 +60,9 @@ Eigen::AlignedBox3d sampled_box(const Motion& m, const sweep::Body& body);
 /// relative 1e-6 for the scaling into the output unit and back.
 double float32_rounding(double largest);
 
-/// float32_rounding for the vertices of a mesh about box (h: a margin) at the tolerance T, in
-/// the motion's unit. Errc::invalid_input when the coordinates do not fit a float.
-double float32_written(const Eigen::AlignedBox3d& box, double T, double h,
-                       const VolumeRounding& rounding);
+/// float32_rounding for the vertices of a mesh within T of box, in the motion's unit.
+/// Errc::invalid_input when the coordinates do not fit a float.
+double float32_written(const Eigen::AlignedBox3d& box, double T, const VolumeRounding& rounding);
 
 /// Each vertex x replaced by float32(scale x) / scale: the point a binary STL holds, in the
 /// motion's unit.

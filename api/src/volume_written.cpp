@@ -19,10 +19,9 @@ double float32_rounding(double largest) {
   return std::sqrt(3.0) * std::ldexp(largest, -24) * (1 + 1e-6);
 }
 
-double float32_written(const Eigen::AlignedBox3d& box, double T, double h,
-                       const VolumeRounding& rounding) {
-  // Every vertex lies within tau + 4 h of the box, and tau < T + h.
-  const double reach = box.min().cwiseAbs().cwiseMax(box.max().cwiseAbs()).maxCoeff() + T + 5 * h;
+double float32_written(const Eigen::AlignedBox3d& box, double T, const VolumeRounding& rounding) {
+  // Every vertex lies within T of V, which the box holds.
+  const double reach = box.min().cwiseAbs().cwiseMax(box.max().cwiseAbs()).maxCoeff() + T;
   if (!(rounding.scale > 0) || !(reach * rounding.scale < 1e30))
     throw Error(Errc::invalid_input, "volume: the coordinates do not fit a float32 STL");
   return float32_rounding(reach);

@@ -63,7 +63,7 @@ inline Eigen::Vector3d support_point(const Body& body, const Eigen::Vector3d& u)
 /// C, whose support point is the placed body's of the larger hi.
 ///
 /// A closed mesh body B is not convex: the pieces then cover what its boundary sweeps, part
-/// by part, each part the hull of a few of its triangles (a tree of them, `Part`). A
+/// by part, each part one of its triangles (under a tree of them, `Part`). A
 /// triangle clear of that is outside V = U M(t) B when one of its points lies outside
 /// M(t0) B for one t0: a point that never meets M(t) dB is inside
 /// M(t) B for every t or for none (docs/geometry.md, "The adaptive mesh").
@@ -121,7 +121,10 @@ class HullPieces {
 
   std::size_t size() const { return delta_.size(); }
   /// The body's parts: 1 for a convex body, leaves of the triangles' tree for a mesh.
-  std::size_t parts() const { return leaves_; }
+  std::size_t parts() const {
+    return static_cast<std::size_t>(
+        std::count_if(parts_.begin(), parts_.end(), [](const Part& p) { return p.child < 0; }));
+  }
   /// How much wider a piece's hull may be than the body's sweep over it (see the
   /// constructor): a turn's measure times the body's diameter / 4.
   double turn_excess(const Keyframe& k0, const Keyframe& k1) const {
@@ -238,7 +241,6 @@ class HullPieces {
     std::vector<int> order(mesh.triangles.size());
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
     parts_.emplace_back();
-    leaves_ = 0;
     split_part(mesh, order, 0, 0, order.size());
   }
   void split_part(const TriangleMesh& mesh, std::vector<int>& order, std::size_t at, std::size_t a,
@@ -247,11 +249,9 @@ class HullPieces {
       return mesh.vertices[static_cast<std::size_t>(
           mesh.triangles[static_cast<std::size_t>(order[i])][static_cast<std::size_t>(k)])];
     };
-    Eigen::AlignedBox3d box, centres;
-    for (std::size_t i = a; i < b; ++i) {
+    Eigen::AlignedBox3d box;
+    for (std::size_t i = a; i < b; ++i)
       for (int k = 0; k < 3; ++k) box.extend(corner(i, k));
-      centres.extend(Eigen::Vector3d((corner(i, 0) + corner(i, 1) + corner(i, 2)) / 3));
-    }
     Part p;
     p.count = -1;
     p.centre = box.center();
@@ -263,22 +263,9 @@ class HullPieces {
       for (int k = 0; k < 3; ++k) points_.push_back(corner(a, k));
       p.count = 3;
       parts_[at] = p;
-      ++leaves_;
       return;
     }
-    Eigen::Index axis = 0;
-    centres.sizes().maxCoeff(&axis);
-    const std::size_t mid = (a + b) / 2;
-    auto key = [&](int t) {
-      const auto& tr = mesh.triangles[static_cast<std::size_t>(t)];
-      double s = 0;
-      for (int v : tr) s += mesh.vertices[static_cast<std::size_t>(v)](axis);
-      return s;
-    };
-    std::nth_element(order.begin() + static_cast<std::ptrdiff_t>(a),
-                     order.begin() + static_cast<std::ptrdiff_t>(mid),
-                     order.begin() + static_cast<std::ptrdiff_t>(b),
-                     [&](int s, int t) { return key(s) < key(t); });
+    const std::size_t mid = detail::split_at_median(mesh, order, a, b);
     p.child = static_cast<int>(parts_.size());
     parts_[at] = p;
     parts_.emplace_back();
@@ -465,7 +452,6 @@ class HullPieces {
   double rho_;
   std::vector<Part> parts_;
   std::vector<Eigen::Vector3d> points_;
-  std::size_t leaves_ = 1;
   std::vector<Map> keys_;
   std::vector<double> delta_;
   double largest_ = 0, rounding_ = 0;

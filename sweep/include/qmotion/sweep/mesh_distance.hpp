@@ -55,6 +55,32 @@ inline Eigen::Vector3d closest_on_triangle(const Eigen::Vector3d& x, const Eigen
   return done(6, a + ab * (vb * den) + ac * (vc * den));
 }
 
+/// Halves order[a, b), triangles of m, at the median of their centroids along the longest
+/// axis of the centroids' box: order[a, mid) then holds the lower half (nth_element), and
+/// mid = (a + b) / 2 is returned. The trees over a mesh's triangles (MeshIndex, and
+/// HullPieces' parts) split this way.
+inline std::size_t split_at_median(const TriangleMesh& m, std::vector<int>& order, std::size_t a,
+                                   std::size_t b) {
+  auto p = [&](int v) -> const Eigen::Vector3d& { return m.vertices[static_cast<std::size_t>(v)]; };
+  Eigen::AlignedBox3d centres;
+  for (std::size_t i = a; i < b; ++i) {
+    const auto& tr = m.triangles[static_cast<std::size_t>(order[i])];
+    centres.extend(Eigen::Vector3d((p(tr[0]) + p(tr[1]) + p(tr[2])) / 3));
+  }
+  Eigen::Index axis = 0;
+  centres.sizes().maxCoeff(&axis);
+  const std::size_t mid = (a + b) / 2;
+  auto key = [&](int t) {
+    const auto& tr = m.triangles[static_cast<std::size_t>(t)];
+    return p(tr[0])(axis) + p(tr[1])(axis) + p(tr[2])(axis);
+  };
+  std::nth_element(order.begin() + static_cast<std::ptrdiff_t>(a),
+                   order.begin() + static_cast<std::ptrdiff_t>(mid),
+                   order.begin() + static_cast<std::ptrdiff_t>(b),
+                   [&](int s, int t) { return key(s) < key(t); });
+  return mid;
+}
+
 /// The signed distance from x to a closed, outward-oriented triangle mesh: the distance to
 /// its nearest triangle, negative where the winding number (the solid angles' sum over 4 pi,
 /// Van Oosterom and Strackee) is above one half. Linear in the mesh's size.
@@ -182,29 +208,16 @@ class MeshIndex {
   /// Fills node `at` over order_[a, b): its box, then halves at the median of the centroids
   /// along their box's longest axis into two new nodes, down to four triangles.
   void build(int at, std::size_t a, std::size_t b) {
-    Eigen::AlignedBox3d box, centres;
-    for (std::size_t i = a; i < b; ++i) {
-      const auto& tr = m_.triangles[static_cast<std::size_t>(order_[i])];
-      for (int v : tr) box.extend(p(v));
-      centres.extend(Eigen::Vector3d((p(tr[0]) + p(tr[1]) + p(tr[2])) / 3));
-    }
+    Eigen::AlignedBox3d box;
+    for (std::size_t i = a; i < b; ++i)
+      for (int v : m_.triangles[static_cast<std::size_t>(order_[i])]) box.extend(p(v));
     nodes_[static_cast<std::size_t>(at)].box = box;
     if (b - a <= 4) {
       nodes_[static_cast<std::size_t>(at)].first = static_cast<int>(a);
       nodes_[static_cast<std::size_t>(at)].count = static_cast<int>(b - a);
       return;
     }
-    Eigen::Index axis = 0;
-    centres.sizes().maxCoeff(&axis);
-    const std::size_t mid = (a + b) / 2;
-    auto key = [&](int t) {
-      const auto& tr = m_.triangles[static_cast<std::size_t>(t)];
-      return p(tr[0])(axis) + p(tr[1])(axis) + p(tr[2])(axis);
-    };
-    std::nth_element(order_.begin() + static_cast<std::ptrdiff_t>(a),
-                     order_.begin() + static_cast<std::ptrdiff_t>(mid),
-                     order_.begin() + static_cast<std::ptrdiff_t>(b),
-                     [&](int s, int t) { return key(s) < key(t); });
+    const std::size_t mid = split_at_median(m_, order_, a, b);
     const int left = static_cast<int>(nodes_.size());
     nodes_.emplace_back();
     nodes_.emplace_back();
