@@ -4,7 +4,9 @@
 #pragma once
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <iostream>
 #include <qmotion/api/export.hpp>
+#include <qmotion/io/robot_programs.hpp>
 #include <sstream>
 #include <string>
 
@@ -27,6 +29,34 @@ inline void add_geometry_options(CLI::App* sub, qmotion::ExportOptions& o) {
   sub->add_option("--units", o.units,
                   "Convert the numbers from the motion's unit into U and declare U: mm, cm, m, "
                   "um, in, ft (default: the motion's)");
+}
+
+/// The POSES argument and the options for robot programs (--robot-config, --tool, --base,
+/// --skip-unknown) of every command that reads poses.
+inline void add_poses_argument(CLI::App* sub, std::string& path, io::RobotOptions& robot) {
+  sub->add_option("POSES", path,
+                  "Pose file (.json, .csv) or robot program (KUKA KRL .src, ABB RAPID .mod/.prg, "
+                  "URScript .script)")
+      ->required();
+  sub->add_option("--robot-config", robot.config_path,
+                  "KUKA: a $config.dat whose TOOL_DATA and BASE_DATA map every move into one "
+                  "frame");
+  sub->add_option("--tool", robot.tool,
+                  "Robot programs: the TCP every pose is expressed for (a KUKA tool number, an "
+                  "ABB tooldata); needed when the moves use more than one tool");
+  sub->add_option("--base", robot.base,
+                  "KUKA with --robot-config: the base the poses are given in (default 0, the "
+                  "world)");
+  sub->add_flag("--skip-unknown", robot.skip_unknown,
+                "Robot programs: skip statements the reader does not know, with a warning "
+                "naming each line, instead of refusing the program");
+}
+
+/// The poses of a file or robot program, its warnings printed on standard error.
+inline io::PoseSet read_poses_argument(const std::string& path, const io::RobotOptions& robot) {
+  io::PoseSet set = io::read_poses(path, robot);
+  for (const std::string& w : set.warnings) std::cerr << "qmotion: warning: " << w << "\n";
+  return set;
 }
 
 /// ", approximated: [deviation at most B (proven), ]measured deviation D within tolerance T"

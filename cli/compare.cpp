@@ -19,12 +19,12 @@ Command add_compare(CLI::App& app) {
       "the poles of a sweep (exact, or fitted within --tol)");
   struct Options {
     std::string poses, point, tol;
+    io::RobotOptions robot;
     qmotion::CompareOptions options;
     bool json = false;
   };
   auto o = std::make_shared<Options>();
-  sub->add_option("POSES", o->poses, "Pose file (.json, .csv, KUKA KRL .src, ABB RAPID .mod/.prg)")
-      ->required();
+  add_poses_argument(sub, o->poses, o->robot);
   sub->add_option("--param", o->options.param, "Parametrisation rule, for every scheme");
   sub->add_option("--point", o->point,
                   "The point x,y,z whose trajectory length is measured (default: the origin)");
@@ -38,7 +38,8 @@ Command add_compare(CLI::App& app) {
   return {sub, [o] {
             if (!o->point.empty()) o->options.point = io::parse_point(o->point, "--point");
             if (!o->tol.empty()) o->options.rel_tol = io::parse_number_text(o->tol, "--tol").value;
-            const auto figures = qmotion::compare_schemes(io::read_poses(o->poses), o->options);
+            const auto figures =
+                qmotion::compare_schemes(read_poses_argument(o->poses, o->robot), o->options);
             if (o->json)
               std::cout << qmotion::to_json(figures).dump(2) << "\n";
             else

@@ -15,11 +15,11 @@ Command add_fit(CLI::App& app) {
       "motion JSON");
   struct Options {
     std::string poses, output;
+    io::RobotOptions robot;
     qmotion::FitOptions options;
   };
   auto o = std::make_shared<Options>();
-  sub->add_option("POSES", o->poses, "Pose file (.json, .csv, KUKA KRL .src, ABB RAPID .mod/.prg)")
-      ->required();
+  add_poses_argument(sub, o->poses, o->robot);
   sub->add_option("-o,--output", o->output, "Motion JSON file to write")->required();
   sub->add_option("--tol", o->options.tol,
                   "Largest distance of the moving origin from a pose's position, in the poses' "
@@ -33,8 +33,13 @@ Command add_fit(CLI::App& app) {
   sub->add_option("--param", o->options.param,
                   "Parameters: given (default when every pose has t), uniform (default "
                   "otherwise), chordal, star-chordal, centripetal, angular, angular-chordal");
+  sub->add_flag("--between", o->options.between,
+                "Hold the tolerances along the whole motion: the moving origin within --tol of "
+                "the polyline through the positions and the rotation within --angle-tol of the "
+                "geodesic between neighbouring poses, proven (default: at the poses)");
   return {sub, [o] {
-            const qmotion::FitResult r = qmotion::fit(io::read_poses(o->poses), o->options);
+            const qmotion::FitResult r =
+                qmotion::fit(read_poses_argument(o->poses, o->robot), o->options);
             r.save(o->output);
             std::cout << r.report_text();
             std::cerr << "qmotion: wrote " << o->output << " (" << r.summary << ")\n";

@@ -17,12 +17,12 @@ Command add_interpolate(CLI::App& app) {
       "Build a Q-motion through the poses (Juettler's methods) and write it as motion JSON");
   struct Options {
     std::string poses, output;
+    io::RobotOptions robot;
     qmotion::InterpolateOptions options;
   };
   auto o = std::make_shared<Options>();
 
-  sub->add_option("POSES", o->poses, "Pose file (.json, .csv, KUKA KRL .src, ABB RAPID .mod/.prg)")
-      ->required();
+  add_poses_argument(sub, o->poses, o->robot);
   sub->add_option("-o,--output", o->output, "Motion JSON file to write")->required();
   sub->add_option("--rotation", o->options.rotation,
                   "Rotation interpolation: elliptic (default), affine, projective (the last two "
@@ -49,7 +49,7 @@ Command add_interpolate(CLI::App& app) {
       "Compute in exact rational arithmetic from the file's digits (quaternion rotations only)");
   return {sub, [o] {
             const qmotion::InterpolatedMotion r =
-                qmotion::interpolate(io::read_poses(o->poses), o->options);
+                qmotion::interpolate(read_poses_argument(o->poses, o->robot), o->options);
             if (!r.poles.empty()) {
               std::ostringstream os;
               os.precision(10);

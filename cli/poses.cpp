@@ -11,22 +11,26 @@
 namespace qmotion::cli {
 
 Command add_poses(CLI::App& app) {
-  auto* sub = app.add_subcommand("poses",
-                                 "Validate a pose file (JSON, CSV or a KRL/RAPID robot program); "
-                                 "with -o, write it as canonical pose JSON");
-  auto o = std::make_shared<std::pair<std::string, std::string>>();
-  sub->add_option("POSES", o->first, "Pose file (.json, .csv, KUKA KRL .src, ABB RAPID .mod/.prg)")
-      ->required();
-  sub->add_option("-o,--output", o->second,
+  auto* sub = app.add_subcommand(
+      "poses",
+      "Validate a pose file (JSON, CSV or a KRL, RAPID or URScript robot program); "
+      "with -o, write it as canonical pose JSON");
+  struct Options {
+    std::string poses, output;
+    io::RobotOptions robot;
+  };
+  auto o = std::make_shared<Options>();
+  add_poses_argument(sub, o->poses, o->robot);
+  sub->add_option("-o,--output", o->output,
                   "Write the poses as JSON (docs/formats.md) to this file");
   return {sub, [o] {
-            const io::PoseSet set = io::read_poses(o->first);
-            if (!o->second.empty()) {
-              io::write_file_atomic(o->second, io::poses_to_json(set).dump(1) + "\n");
-              std::cerr << "qmotion: wrote " << set.poses.size() << " poses to " << o->second
+            const io::PoseSet set = read_poses_argument(o->poses, o->robot);
+            if (!o->output.empty()) {
+              io::write_file_atomic(o->output, io::poses_to_json(set).dump(1) + "\n");
+              std::cerr << "qmotion: wrote " << set.poses.size() << " poses to " << o->output
                         << "\n";
             } else {
-              const nlohmann::json summary{{"source", o->first},
+              const nlohmann::json summary{{"source", o->poses},
                                            {"poses", set.poses.size()},
                                            {"units", set.units},
                                            {"has_t", set.has_t()}};

@@ -17,11 +17,11 @@ Command add_qspline(CLI::App& app) {
       "it as a quaternion-spline motion file");
   struct Options {
     std::string poses, output;
+    io::RobotOptions robot;
     qmotion::QSplineOptions options;
   };
   auto o = std::make_shared<Options>();
-  sub->add_option("POSES", o->poses, "Pose file (.json, .csv, KUKA KRL .src, ABB RAPID .mod/.prg)")
-      ->required();
+  add_poses_argument(sub, o->poses, o->robot);
   sub->add_option("-o,--output", o->output, "Motion JSON file to write")->required();
   sub->add_option("--scheme", o->options.scheme,
                   "kks (Kim-Kim-Shin C2 B-spline, iterative), quintic (Tan et al., tension, any "
@@ -34,7 +34,8 @@ Command add_qspline(CLI::App& app) {
                   "otherwise), chordal, star-chordal, centripetal, angular, angular-chordal. KKS "
                   "and the quartic place the keys at uniform knots on the interval");
   return {sub, [o] {
-            const qmotion::QSplineResult r = qmotion::qspline(io::read_poses(o->poses), o->options);
+            const qmotion::QSplineResult r =
+                qmotion::qspline(read_poses_argument(o->poses, o->robot), o->options);
             r.save(o->output);
             std::cerr << "qmotion: wrote " << o->output << " (" << r.summary << ")\n";
             return 0;

@@ -1,4 +1,6 @@
 // python/geometry.cpp: poses and NURBS as Python objects.
+#include <qmotion/io/robot_programs.hpp>
+
 #include "convert.hpp"
 
 namespace qmotion::python {
@@ -11,9 +13,26 @@ void bind_geometry(py::module_& m) {
           "to_dict", [](const io::PoseSet& s) { return to_python(io::poses_to_json(s)); },
           "The poses as pose JSON (docs/formats.md), as a dict");
   m.def(
-      "read_poses", [](const std::string& path) { return io::read_poses(path); }, py::arg("path"),
-      "Reads and validates a pose file (.json or .csv). ValueError names the "
-      "file, the pose and the field that is wrong.");
+      "read_poses",
+      [](const std::string& path, const std::string& robot_config, const std::string& tool,
+         const std::string& base, bool skip_unknown) {
+        io::RobotOptions o;
+        o.config_path = robot_config;
+        o.tool = tool;
+        o.base = base;
+        o.skip_unknown = skip_unknown;
+        io::PoseSet set = io::read_poses(path, o);
+        const py::object warn = py::module_::import("warnings").attr("warn");
+        for (const std::string& w : set.warnings) warn(w);
+        return set;
+      },
+      py::arg("path"), py::kw_only(), py::arg("robot_config") = "", py::arg("tool") = "",
+      py::arg("base") = "", py::arg("skip_unknown") = false,
+      "Reads and validates a pose file (.json, .csv) or robot program (KUKA .src, ABB .mod/.prg, "
+      "URScript .script; docs/fitting.md). robot_config, tool, base and skip_unknown are the "
+      "CLI's --robot-config, --tool, --base and --skip-unknown; skipped statements are "
+      "reported with warnings.warn. ValueError names the file, the line or pose, and the "
+      "field that is wrong.");
   m.def("poses", &to_poses, py::arg("poses"), py::arg("units") = "mm",
         "Poses from a file name, a pose dict, or rows [t, x, y, z, qw, qx, qy, qz] (7 columns "
         "without t) as a list or numpy array, validated as the CLI validates files.");

@@ -242,9 +242,10 @@ void bind_motion(py::module_& m) {
   m.def(
       "fit",
       [](const py::object& poses, double tol, double angle_tol, int degree, int translation_degree,
-         const std::string& param, const std::string& units) {
+         const std::string& param, const std::string& units, bool between) {
         FitOptions o;
         o.tol = tol;
+        o.between = between;
         o.angle_tol_deg = angle_tol;
         o.degree = degree;
         o.translation_degree = translation_degree;
@@ -255,10 +256,13 @@ void bind_motion(py::module_& m) {
       },
       py::arg("poses"), py::arg("tol"), py::arg("angle_tol") = 0.1, py::arg("degree") = -1,
       py::arg("translation_degree") = -1, py::arg("param") = "", py::arg("units") = "mm",
+      py::arg("between") = false,
       "A lean B-spline Q-motion within tol (the poses' unit) of every pose's position and\n"
       "angle_tol degrees of its rotation, as `qmotion fit`; returns (Motion, report) where the\n"
       "report dict gives control_points, spans, the worst deviations and where, and the\n"
-      "deviation at every pose. poses: as for interpolate (also .src KRL, .mod/.prg RAPID).");
+      "deviation at every pose. between=True (`fit --between`) holds both along the whole\n"
+      "motion, proven (the report's 'between'). poses: as for interpolate (also robot\n"
+      "programs: .src KRL, .mod/.prg RAPID, .script URScript).");
 
   m.def(
       "qspline",

@@ -24,6 +24,7 @@ FitResult fit(const io::PoseSet& set, const FitOptions& o) {
   kernel::FitOptions ko;
   ko.tol = o.tol;
   ko.angle_tol_deg = o.angle_tol_deg;
+  ko.between = o.between;
   if (o.degree >= 0) ko.k = o.degree;
   if (o.translation_degree >= 0) ko.l = o.translation_degree;
   kernel::FittedMotion fm = kernel::fit_bspline(poses, kernel::parametrize(poses, rule), ko);
@@ -62,12 +63,32 @@ std::string FitResult::report_text() const {
      << "worst angle deviation: " << report.worst_angle_deg << " deg at pose "
      << report.worst_angle_pose << " (t = " << p.parameters[report.worst_angle_pose]
      << "), tolerance " << p.angle_tolerance_deg << "\n";
+  if (report.between) {
+    const auto at = [&](std::size_t i) {
+      return " between poses " + std::to_string(i) + " and " + std::to_string(i + 1);
+    };
+    os << "between poses, position: at most " << report.between_position_bound << " "
+       << motion.units() << " (proven)" << at(report.between_position_interval) << "; sampled "
+       << report.between_position_sampled << "\n"
+       << "between poses, angle: at most " << report.between_angle_bound_deg << " deg (proven)"
+       << at(report.between_angle_interval) << "; sampled " << report.between_angle_sampled_deg
+       << "\n";
+  }
   return os.str();
 }
 
 nlohmann::json FitResult::report_json() const {
   const auto& p = *motion.rational().provenance;
+  nlohmann::json between = nullptr;  // the tolerances held at the poses only
+  if (report.between)
+    between = {{"position_bound", report.between_position_bound},
+               {"position_interval", report.between_position_interval},
+               {"angle_bound_deg", report.between_angle_bound_deg},
+               {"angle_interval", report.between_angle_interval},
+               {"position_sampled", report.between_position_sampled},
+               {"angle_sampled_deg", report.between_angle_sampled_deg}};
   return {{"poses", p.poses.size()},
+          {"between", between},
           {"control_points", control_points},
           {"spans", spans},
           {"degree", motion.rational().degree()},

@@ -392,22 +392,33 @@ PoseSet parse_poses_csv(const std::string& text, const std::string& source) {
   return set;
 }
 
-PoseSet read_poses(const std::string& path) {
+PoseSet read_poses(const std::string& path) { return read_poses(path, RobotOptions{}); }
+
+PoseSet read_poses(const std::string& path, const RobotOptions& robot) {
   const std::string text = read_text_file(path);
   const auto dot = path.rfind('.');
   std::string ext = dot == std::string::npos ? "" : path.substr(dot + 1);
   for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const bool program = ext == "src" || ext == "mod" || ext == "prg" || ext == "script";
+  if (!program && (robot.given() || robot.skip_unknown))
+    throw Error(Errc::invalid_input,
+                path +
+                    ": --robot-config, --tool, --base and --skip-unknown are for robot "
+                    "programs (.src, .mod, .prg, .script)");
+  RobotOptions o = robot;
+  if (!o.config_text && !o.config_path.empty()) o.config_text = read_text_file(o.config_path);
   if (ext == "csv") return parse_poses_csv(text, path);
   if (ext == "src") {  // KUKA KRL, with the .dat beside it when there is one
     for (const char* dat : {".dat", ".DAT"}) {
       const std::string dat_path = path.substr(0, dot) + dat;
       std::error_code ec;
       if (std::filesystem::exists(dat_path, ec))
-        return parse_krl(text, path, read_text_file(dat_path), dat_path);
+        return parse_krl(text, path, read_text_file(dat_path), dat_path, o);
     }
-    return parse_krl(text, path);
+    return parse_krl(text, path, std::nullopt, {}, o);
   }
-  if (ext == "mod" || ext == "prg") return parse_rapid(text, path);
+  if (ext == "mod" || ext == "prg") return parse_rapid(text, path, o);
+  if (ext == "script") return parse_urscript(text, path, o);
   return parse_poses_json(text, path);
 }
 

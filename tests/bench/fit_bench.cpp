@@ -6,7 +6,9 @@
 #include <benchmark/benchmark.h>
 
 #include <map>
+#include <qmotion/kernel/error.hpp>
 #include <qmotion/kernel/motion_fit.hpp>
+#include <string>
 
 #include "fit_streams.hpp"
 
@@ -54,6 +56,48 @@ BENCHMARK(BM_FitPoses)
     ->ArgsProduct({{1000, 10000, 100000}, {0, 1}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+
+/// The three source motions of test::sources (a Bezier, a B-spline on uneven parameters, a KKS
+/// quaternion spline), sampled at n poses with bounded noise (below a third of the
+/// tolerances) or Gaussian noise (standard deviations a quarter of them, so a few poses of a
+/// long stream lie beyond the tolerance), fitted at level 0, at the poses or `--between`.
+/// A stream the fit refuses is reported as refused, with the reason.
+void BM_FitSources(benchmark::State& st) {
+  const std::size_t n = static_cast<std::size_t>(st.range(0));
+  const auto source = static_cast<std::size_t>(st.range(1));
+  const bool gaussian = st.range(2) != 0, between = st.range(3) != 0;
+  static const auto all = test::sources();
+  kernel::FitOptions o = level(0);
+  o.between = between;
+  const test::Stream s =
+      gaussian ? test::samples(all[source].second, n, o.tol / 4, o.angle_tol_deg / 4, true)
+               : test::samples(all[source].second, n, o.tol / 3.5, o.angle_tol_deg / 3.5);
+  std::size_t points = 0;
+  double pos = 0, bound = 0;
+  for (auto _ : st) {
+    try {
+      const auto f = kernel::fit_bspline(s.poses, s.t, o);
+      points = f.motion.curve.curve.ctrl().size();
+      pos = f.report.worst_position;
+      bound = f.report.between_position_bound;
+    } catch (const Error& e) {
+      st.SkipWithError(e.what());
+      return;
+    }
+    benchmark::DoNotOptimize(points);
+  }
+  st.SetLabel(std::string(all[source].first) + (gaussian ? ", gaussian" : ", bounded") +
+              (between ? ", between" : ""));
+  st.counters["poses_per_control_point"] = static_cast<double>(n) / static_cast<double>(points);
+  st.counters["control_points"] = static_cast<double>(points);
+  st.counters["worst_mm"] = pos;
+  if (between) st.counters["between_bound_mm"] = bound;
+}
+BENCHMARK(BM_FitSources)
+    ->ArgsProduct({{1000, 10000, 100000}, {0, 1, 2}, {0, 1}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(1);
 
 void BM_Peer_InterpolateAll(benchmark::State& st) {
   const std::size_t n = static_cast<std::size_t>(st.range(0));

@@ -1,6 +1,6 @@
 // tests/fuzz/robot_fuzz.cpp: the robot-program readers (KUKA KRL with and without its .dat,
-// ABB RAPID) and `fit` on the poses they give. The first byte chooses: 0 KRL alone, 1 KRL
-// whose .dat follows the first NUL byte, 2 and 3 RAPID.
+// ABB RAPID, URScript) and `fit` on the poses they give. The first byte chooses: 0 KRL alone,
+// 1 KRL whose .dat follows the first NUL byte, 2 RAPID, 3 URScript.
 #include <qmotion/api/fit.hpp>
 #include <qmotion/io/robot_programs.hpp>
 
@@ -18,8 +18,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     body = body.substr(0, std::min(nul, body.size()));
   }
   fuzz::accept_refusals([&] {
-    const io::PoseSet set = kind >= 2 ? io::parse_rapid(body, "fuzz.mod")
-                                      : io::parse_krl(body, "fuzz.src", dat, "fuzz.dat");
+    const io::PoseSet set = kind == 3   ? io::parse_urscript(body, "fuzz.script")
+                            : kind == 2 ? io::parse_rapid(body, "fuzz.mod")
+                                        : io::parse_krl(body, "fuzz.src", dat, "fuzz.dat");
     (void)io::poses_to_json(set).dump();
     FitOptions o;
     o.tol = 0.01;

@@ -6,6 +6,8 @@
 #include <qmotion/io/robot_programs.hpp>
 #include <qmotion/kernel/error.hpp>
 
+#include "refusal_expect.hpp"
+
 namespace qmotion::io {
 namespace {
 
@@ -88,25 +90,20 @@ TEST(RobotPrograms, RapidRobtargetsInTheOrderOfTheMoves) {
   expect_pose(s, 5, {100, 0, 500}, q10.normalized());
 }
 
-void expect_refused(const std::function<void()>& f, const std::string& words) {
-  try {
-    f();
-    FAIL() << "accepted; expected a refusal naming " << words;
-  } catch (const Error& e) {
-    EXPECT_EQ(e.code(), Errc::invalid_input) << e.what();
-    EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
-  }
-}
+using test::expect_refused;
 
 TEST(RobotPrograms, WhatAReaderDoesNotUnderstandIsRefusedWithFileAndLine) {
   const std::string head = "DEF p( )\nPTP {X 1, Y 2, Z 3, A 0, B 0, C 0}\n";
   auto krl = [&](const std::string& line) {
     return [=] { parse_krl(head + line + "\nEND\n", "p.src"); };
   };
-  expect_refused(krl("IF $IN[1] THEN"), "p.src: line 3: 'IF $IN[1] THEN' is not understood");
+  expect_refused(krl("IF $IN[1] THEN"), "p.src: line 3: 'IF $IN[1] THEN' is control flow");
+  expect_refused(krl("$FOO = 1"), "p.src: line 3: '$FOO = 1' assigns the system variable $FOO");
+  expect_refused(krl("WAIT 3"), "p.src: line 3: 'WAIT 3' is not understood");
   expect_refused(krl("LIN XNOPE"), "p.src: line 3: target 'XNOPE' is not declared");
   expect_refused(krl("LIN_REL {X 1}"), "relative motion");
-  expect_refused(krl("$BASE = BASE_DATA[1]"), "changes the frame");
+  expect_refused(krl("$BASE = BASE_DATA[1]\nLIN {X 1, Y 2, Z 3, A 0, B 0, C 0}"),
+                 "p.src: line 4: this move uses BASE_DATA[1], line 2 uses the robot's frame");
   expect_refused(krl("LIN {X 1, Y 2, Z 3}"), "the aggregate has no A");
   expect_refused(krl("LIN {X 1, Y 2, Z 3, A 0, B 0, C zero}"), "expected a number");
   expect_refused(krl("DECL E6AXIS XH={A1 0,A2 -90,A3 90,A4 0,A5 0,A6 0}\nPTP XH"), "joint angles");
@@ -128,7 +125,9 @@ TEST(RobotPrograms, WhatAReaderDoesNotUnderstandIsRefusedWithFileAndLine) {
                        "MoveL q, v1, fine, tool0;"),
                  "not a unit quaternion");
   expect_refused(rapid("", "MoveAbsJ home, v1, fine, tool0;"), "joint angles");
-  expect_refused(rapid("", "GoHome;"), "m.mod: line 4: 'GoHome' is not understood");
+  expect_refused(rapid("", "GoHome;"), "m.mod: line 4: 'GoHome' calls the routine GoHome");
+  expect_refused(rapid("", "n := n + 1;"), "m.mod: line 4: 'n := n + 1' assigns 'n'");
+  expect_refused(rapid("", "TriggL p, v1, t, fine, tool0;"), "in a way the RAPID reader");
   expect_refused(rapid("", "IF di1 = 1 THEN"), "the statement has no closing ';'");
   expect_refused(rapid("", "MoveL Offs(p, 0, 0, 10), v1, fine, tool0;"), "is not declared");
 }

@@ -15,6 +15,7 @@ struct FitOptions {
   int degree = -1;              ///< --degree K: of Q_rot (2 to 25)
   int translation_degree = -1;  ///< --translation-degree L: of the translation (2 to 25)
   std::string param;            ///< --param: as interpolate's (given when every pose has t)
+  bool between = false;         ///< --between: the tolerances hold along the whole motion
 };
 
 /// A fitted motion: what `interpolate` returns (the motion, its summary, the poses as given;

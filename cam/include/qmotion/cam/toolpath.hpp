@@ -12,6 +12,7 @@
 #include <qmotion/cam/machine.hpp>
 #include <qmotion/kernel/bspline.hpp>
 #include <qmotion/kernel/error.hpp>
+#include <qmotion/kernel/segment.hpp>
 #include <string>
 #include <vector>
 
@@ -62,13 +63,7 @@ struct SampledToolpath {
 
 namespace detail {
 
-inline double point_segment_distance(const Eigen::Vector3d& x, const Eigen::Vector3d& a,
-                                     const Eigen::Vector3d& b) {
-  const Eigen::Vector3d ab = b - a;
-  const double l2 = ab.squaredNorm();
-  const double s = l2 > 0 ? std::clamp((x - a).dot(ab) / l2, 0.0, 1.0) : 0.0;
-  return (x - (a + s * ab)).norm();
-}
+using kernel::point_segment_distance;
 
 inline double angle_between(const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
   return std::atan2(u.cross(v).norm(), u.dot(v));

@@ -39,6 +39,9 @@ struct PoseSet {
   std::string source;        ///< file name, for messages
   std::string units = "mm";  ///< length unit of the positions
   std::vector<PoseInput> poses;
+  /// What a reader let pass with a warning (a robot program read with skip_unknown): each
+  /// names the file and line. The CLI prints them on standard error.
+  std::vector<std::string> warnings;
 
   bool has_t() const { return !poses.empty() && poses.front().t.has_value(); }
 };

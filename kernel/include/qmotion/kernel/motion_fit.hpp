@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <qmotion/kernel/banded.hpp>
+#include <qmotion/kernel/fit_between.hpp>
 #include <qmotion/kernel/interpolation.hpp>
 #include <qmotion/kernel/motion_value.hpp>
 #include <qmotion/kernel/qspline.hpp>
@@ -20,6 +21,10 @@ struct FitOptions {
   double angle_tol_deg = 0.1;  ///< rotation angle between the motion's and the pose's frame
   int k = 3;                   ///< degree of Q_rot (2 to 25)
   int l = 3;                   ///< degree of the translation p (2 to 25)
+  /// Hold the tolerances along the whole motion (`fit --between`): the moving origin within
+  /// tol of the polyline through the positions, the rotation within angle_tol_deg of the
+  /// geodesic between neighbouring rotations, proven (fit_between.hpp).
+  bool between = false;
 };
 
 /// How near the fitted motion comes to each pose, measured on the composed Q-motion (the
@@ -32,6 +37,13 @@ struct FitReport {
   int insertion_rounds = 0;  ///< rounds that split the spans where a pose failed
   int knots_removed = 0;     ///< interior knots removed after the tolerance was met
   int solves = 0;            ///< least-squares fits made (each linear in the poses)
+  /// With FitOptions::between: the proven bounds along the motion, the interval (between
+  /// poses i and i + 1) where each is largest, and the largest a sample of 16 times per
+  /// interval finds (beside the bounds, never in their place).
+  bool between = false;
+  double between_position_bound = 0, between_angle_bound_deg = 0;
+  std::size_t between_position_interval = 0, between_angle_interval = 0;
+  double between_position_sampled = 0, between_angle_sampled_deg = 0;
 };
 
 /// A fitted motion (provenance form `fit`, with its poses, parameters and tolerances) and its
@@ -196,12 +208,26 @@ inline FitCandidate fit_on_knots(const FitData& d, std::vector<double> x, int* s
     if (round == 1) angles();  // the last round's angles (the test measured the others)
   }
   const Eigen::MatrixXd Sv = collocate(ct, c.trans);
-  c.meets = true;
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < n; ++i)
     c.pos[i] =
         (Sv.row(static_cast<Eigen::Index>(i)) - d.S.row(static_cast<Eigen::Index>(i))).norm();
-    c.meets = c.meets && c.pos[i] <= d.opt.tol && c.ang[i] <= d.opt.angle_tol_deg;
+  bool at_poses = true;
+  for (std::size_t i = 0; i < n; ++i)
+    at_poses = at_poses && c.pos[i] <= d.opt.tol && c.ang[i] <= d.opt.angle_tol_deg;
+  // Between the poses only when the poses are met: a candidate that misses one is refined or
+  // dropped anyway. Each interval's bounds count for the poses at both its ends.
+  if (d.opt.between && at_poses) {
+    const auto b = between::bounds({d.t, d.S, d.R, d.opt.tol, d.opt.angle_tol_deg},
+                                   {Tr, d.opt.k, c.rot, Tt, d.opt.l, c.trans});
+    for (std::size_t i = 0; i + 1 < n; ++i)
+      for (const std::size_t e : {i, i + 1}) {
+        c.pos[e] = std::max(c.pos[e], b.position[i]);
+        c.ang[e] = std::max(c.ang[e], b.angle_deg[i]);
+      }
   }
+  c.meets = true;
+  for (std::size_t i = 0; i < n; ++i)
+    c.meets = c.meets && c.pos[i] <= d.opt.tol && c.ang[i] <= d.opt.angle_tol_deg;
   c.x = std::move(x);
   return c;
 }
@@ -553,6 +579,22 @@ inline FittedMotion fit_bspline(const std::vector<Pose<double>>& poses,
   QMotion<double> curve{Basis::bspline, detail::compose(f)};
   prov.residuals = pose_residuals(curve, poses, t);
   FitReport report = fit_deviations(curve, poses, t);
+  if (opt.between) {
+    const double a = t.front(), b = t.back();
+    const auto Tr = detail::clamped_knots(a, b, best.x, d.opt.k);
+    const auto Tt = detail::clamped_knots(a, b, best.x, d.opt.l);
+    const auto bb = between::bounds({d.t, d.S, d.R, d.opt.tol, d.opt.angle_tol_deg},
+                                    {Tr, d.opt.k, best.rot, Tt, d.opt.l, best.trans}, true);
+    report.between = true;
+    for (std::size_t i = 0; i + 1 < n; ++i) {
+      if (bb.position[i] > report.between_position_bound)
+        report.between_position_bound = bb.position[i], report.between_position_interval = i;
+      if (bb.angle_deg[i] > report.between_angle_bound_deg)
+        report.between_angle_bound_deg = bb.angle_deg[i], report.between_angle_interval = i;
+    }
+    report.between_position_sampled = bb.sampled_position;
+    report.between_angle_sampled_deg = bb.sampled_angle_deg;
+  }
   report.insertion_rounds = rep.insertion_rounds;
   report.knots_removed = rep.knots_removed;
   report.solves = rep.solves;

@@ -1,0 +1,25 @@
+"""`fit --between` through the Python module and the command line: the same proven bounds,
+within the tolerances, with the sampled check below them."""
+import os
+import re
+import subprocess
+
+import qmotion
+
+EXE = os.environ["QMOTION_EXE"]
+DATA = os.environ["QMOTION_TEST_DATA"]
+
+
+def test_between_bounds_agree_and_hold(tmp_path):
+    stream = os.path.join(DATA, "fit/noisy_helix.json")
+    _, report = qmotion.fit(stream, tol=0.01, angle_tol=0.05, between=True)
+    b = report["between"]
+    assert b["position_sampled"] <= b["position_bound"] <= 0.01
+    assert b["angle_sampled_deg"] <= b["angle_bound_deg"] <= 0.05
+    _, plain = qmotion.fit(stream, tol=0.01, angle_tol=0.05)
+    assert plain["between"] is None
+    r = subprocess.run([EXE, "fit", stream, "--tol", "0.01", "--angle-tol", "0.05", "--between",
+                        "-o", str(tmp_path / "m.json")], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    printed = float(re.search(r"between poses, position: at most (\S+) mm", r.stdout).group(1))
+    assert abs(printed - b["position_bound"]) <= 1e-5 * b["position_bound"]
