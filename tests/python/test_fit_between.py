@@ -23,3 +23,18 @@ def test_between_bounds_agree_and_hold(tmp_path):
     assert r.returncode == 0, r.stderr
     printed = float(re.search(r"between poses, position: at most (\S+) mm", r.stdout).group(1))
     assert abs(printed - b["position_bound"]) <= 1e-5 * b["position_bound"]
+
+
+def test_the_docs_show_what_the_command_prints(tmp_path):
+    """docs/fitting.md's two outputs of `fit` on noisy_helix.json are this build's."""
+    docs = open(os.path.join(DATA, "..", "..", "docs", "fitting.md"), encoding="utf-8").read()
+    blocks = re.findall(r"```\n(.*?)```", docs, re.S)
+    stream = os.path.join(DATA, "fit/noisy_helix.json")
+    for flags, first in (([], "poses: 400"), (["--between"], "between poses, position:")):
+        out = subprocess.run([EXE, "fit", stream, "--tol", "0.01", "--angle-tol", "0.05",
+                              "-o", str(tmp_path / "m.json")] + flags,
+                             capture_output=True, text=True).stdout
+        shown = [b for b in blocks if b.startswith(first)]
+        assert shown, first
+        for line in shown[0].splitlines():
+            assert line in out.splitlines(), line
