@@ -28,7 +28,17 @@ def test_between_bounds_agree_and_hold(tmp_path):
 def test_the_docs_show_what_the_command_prints(tmp_path):
     """docs/fitting.md's two outputs of `fit` on noisy_helix.json are this build's."""
     docs = open(os.path.join(DATA, "..", "..", "docs", "fitting.md"), encoding="utf-8").read()
-    blocks = re.findall(r"```\n(.*?)```", docs, re.S)
+    blocks, block, lang = [], None, None
+    for line in docs.splitlines():  # fenced blocks without a language, in order
+        if line.startswith("```"):
+            if block is None:
+                block, lang = [], line[3:]
+            else:
+                if not lang:
+                    blocks.append("\n".join(block))
+                block = None
+        elif block is not None:
+            block.append(line)
     stream = os.path.join(DATA, "fit/noisy_helix.json")
     for flags, first in (([], "poses: 400"), (["--between"], "between poses, position:")):
         out = subprocess.run([EXE, "fit", stream, "--tol", "0.01", "--angle-tol", "0.05",
