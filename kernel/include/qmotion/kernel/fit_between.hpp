@@ -9,6 +9,7 @@
 #include <cmath>
 #include <qmotion/kernel/bspline.hpp>
 #include <qmotion/kernel/segment.hpp>
+#include <utility>
 #include <vector>
 
 namespace qmotion::kernel::between {
@@ -35,6 +36,14 @@ inline Piece bezier_piece(const std::vector<double>& T, int p, const Eigen::Matr
     B.row(k) = d.row(p);
   }
   return B;
+}
+
+/// The largest of per-interval values and the interval where it is (0 for none).
+inline std::pair<double, std::size_t> largest(const std::vector<double>& v) {
+  const auto it = std::max_element(v.begin(), v.end());
+  return it == v.end()
+             ? std::pair<double, std::size_t>{0.0, 0}
+             : std::pair<double, std::size_t>{*it, static_cast<std::size_t>(it - v.begin())};
 }
 
 /// de Casteljau at 1/2: the coefficients of the two halves.

@@ -5,11 +5,13 @@
 #include <cmath>
 #include <qmotion/kernel/banded.hpp>
 #include <qmotion/kernel/fit_between.hpp>
+#include <qmotion/kernel/fit_knots.hpp>
 #include <qmotion/kernel/interpolation.hpp>
 #include <qmotion/kernel/motion_value.hpp>
 #include <qmotion/kernel/qspline.hpp>
 #include <qmotion/kernel/spline_interpolation.hpp>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -211,12 +213,15 @@ inline FitCandidate fit_on_knots(const FitData& d, std::vector<double> x, int* s
   for (std::size_t i = 0; i < n; ++i)
     c.pos[i] =
         (Sv.row(static_cast<Eigen::Index>(i)) - d.S.row(static_cast<Eigen::Index>(i))).norm();
-  bool at_poses = true;
-  for (std::size_t i = 0; i < n; ++i)
-    at_poses = at_poses && c.pos[i] <= d.opt.tol && c.ang[i] <= d.opt.angle_tol_deg;
+  auto meets = [&] {
+    c.meets = true;
+    for (std::size_t i = 0; i < n; ++i)
+      c.meets = c.meets && c.pos[i] <= d.opt.tol && c.ang[i] <= d.opt.angle_tol_deg;
+    return c.meets;
+  };
   // Between the poses only when the poses are met: a candidate that misses one is refined or
   // dropped anyway. Each interval's bounds count for the poses at both its ends.
-  if (d.opt.between && at_poses) {
+  if (meets() && d.opt.between) {
     const auto b = between::bounds({d.t, d.S, d.R, d.opt.tol, d.opt.angle_tol_deg},
                                    {Tr, d.opt.k, c.rot, Tt, d.opt.l, c.trans});
     for (std::size_t i = 0; i + 1 < n; ++i)
@@ -224,10 +229,8 @@ inline FitCandidate fit_on_knots(const FitData& d, std::vector<double> x, int* s
         c.pos[e] = std::max(c.pos[e], b.position[i]);
         c.ang[e] = std::max(c.ang[e], b.angle_deg[i]);
       }
+    meets();
   }
-  c.meets = true;
-  for (std::size_t i = 0; i < n; ++i)
-    c.meets = c.meets && c.pos[i] <= d.opt.tol && c.ang[i] <= d.opt.angle_tol_deg;
   c.x = std::move(x);
   return c;
 }
@@ -252,23 +255,6 @@ inline bool acceptable(const FitData& d, const FitCandidate& c) {
   return find_poles(QMotion<double>{Basis::bspline, compose(f)}).empty();
 }
 
-/// The interior knots x increase strictly and each span holds at least `least` parameters.
-inline bool spans_hold(const std::vector<double>& x, const std::vector<double>& t,
-                       std::size_t least) {
-  std::size_t i = 0;
-  for (std::size_t s = 0; s <= x.size(); ++s) {
-    const std::size_t i0 = i;
-    while (i < t.size() && (s == x.size() || t[i] < x[s])) ++i;
-    if (i - i0 < least || (s > 0 && s < x.size() && !(x[s - 1] < x[s]))) return false;
-  }
-  return true;
-}
-
-/// A knot density: piecewise constant, `weight[s]` knots over [edge[s], edge[s + 1]].
-struct KnotDensity {
-  std::vector<double> edge, weight;
-};
-
 /// The density a passing candidate suggests: on a span of width h whose worst pose uses the
 /// fraction e of its tolerance, a degree-p fit errs like h^(p+1), so the span wants
 /// e^(1/(p+1)) knots. Its total estimates the spans needed.
@@ -284,25 +270,6 @@ inline KnotDensity suggested_density(const FitData& d, const FitCandidate& c, in
   }
   for (double& w : k.weight) w = std::pow(w, 1.0 / (p + 1));
   return k;
-}
-
-/// `count` interior knots that equidistribute the density; ok = false when a span would
-/// hold fewer than `least` poses.
-inline std::vector<double> equidistributed(const KnotDensity& k, const std::vector<double>& t,
-                                           std::size_t count, std::size_t least, bool* ok) {
-  std::vector<double> F(k.weight.size() + 1, 0.0);  // cumulative at the edges
-  for (std::size_t s = 0; s < k.weight.size(); ++s) F[s + 1] = F[s] + k.weight[s];
-  std::vector<double> x;
-  for (std::size_t j = 1; j <= count; ++j) {
-    const double target = F.back() * static_cast<double>(j) / static_cast<double>(count + 1);
-    const std::size_t s = std::min(
-        static_cast<std::size_t>(std::upper_bound(F.begin(), F.end(), target) - F.begin()) - 1,
-        k.weight.size() - 1);
-    const double frac = (target - F[s]) / (F[s + 1] - F[s]);
-    x.push_back(k.edge[s] + std::clamp(frac, 0.0, 1.0) * (k.edge[s + 1] - k.edge[s]));
-  }
-  *ok = spans_hold(x, t, least);
-  return x;
 }
 
 /// The search for the knots of a fit: the best candidate so far and what it cost.
@@ -586,12 +553,10 @@ inline FittedMotion fit_bspline(const std::vector<Pose<double>>& poses,
     const auto bb = between::bounds({d.t, d.S, d.R, d.opt.tol, d.opt.angle_tol_deg},
                                     {Tr, d.opt.k, best.rot, Tt, d.opt.l, best.trans}, true);
     report.between = true;
-    for (std::size_t i = 0; i + 1 < n; ++i) {
-      if (bb.position[i] > report.between_position_bound)
-        report.between_position_bound = bb.position[i], report.between_position_interval = i;
-      if (bb.angle_deg[i] > report.between_angle_bound_deg)
-        report.between_angle_bound_deg = bb.angle_deg[i], report.between_angle_interval = i;
-    }
+    std::tie(report.between_position_bound, report.between_position_interval) =
+        between::largest(bb.position);
+    std::tie(report.between_angle_bound_deg, report.between_angle_interval) =
+        between::largest(bb.angle_deg);
     report.between_position_sampled = bb.sampled_position;
     report.between_angle_sampled_deg = bb.sampled_angle_deg;
   }
