@@ -6,7 +6,6 @@
 #include <cstring>
 #include <map>
 #include <qmotion/kernel/quaternion.hpp>
-#include <regex>
 #include <set>
 #include <utility>
 
@@ -284,19 +283,47 @@ bool control_flow(const std::string& word) {
   return words.count(word) > 0;
 }
 
+/// The words of a statement, split at blanks.
+std::vector<std::string> words(const std::string& u) {
+  std::vector<std::string> out;
+  std::size_t i = 0;
+  while ((i = u.find_first_not_of(" \t", i)) != std::string::npos) {
+    const std::size_t e = std::min(u.find_first_of(" \t", i), u.size());
+    out.push_back(u.substr(i, e - i));
+    i = e;
+  }
+  return out;
+}
+
+bool digits(const std::string& w) {
+  return !w.empty() && w.find_first_not_of("0123456789") == std::string::npos;
+}
+
+/// WAIT SEC t, WAIT FOR condition, INTERRUPT ON/OFF/ENABLE/DISABLE n, and KUKA's standard
+/// stop-message interrupt INTERRUPT DECL n WHEN $STOPMESS==TRUE DO IR_STOPM ( ).
+bool passes_as_written(const std::string& u) {
+  const auto w = words(u);
+  if (w.size() >= 3 && w[0] == "WAIT" && (w[1] == "SEC" || w[1] == "FOR")) return true;
+  if (w.size() == 3 && w[0] == "INTERRUPT" && digits(w[2]) &&
+      (w[1] == "ON" || w[1] == "OFF" || w[1] == "ENABLE" || w[1] == "DISABLE"))
+    return true;
+  std::string joined;  // without blanks
+  for (const auto& x : w) joined += x;
+  const std::string head = "INTERRUPTDECL", tail = "WHEN$STOPMESS==TRUEDOIR_STOPM()";
+  return w.size() >= 3 && w[0] == "INTERRUPT" && w[1] == "DECL" && digits(w[2]) &&
+         joined.size() > head.size() + tail.size() && joined.rfind(head, 0) == 0 &&
+         joined.compare(joined.size() - tail.size(), tail.size(), tail) == 0 &&
+         digits(joined.substr(head.size(), joined.size() - head.size() - tail.size()));
+}
+
 /// One statement of the program.
 void krl_statement(const Statement& s, KrlState& st, const RobotOptions& options, PoseSet& set) {
   std::string u = upper(s.text);
   if (u.rfind("GLOBAL ", 0) == 0) u = trim(u.substr(7));
   const std::string word = u.substr(0, u.find_first_of(" \t({=["));
-  static const std::regex stop_interrupt(
-      R"(INTERRUPT +DECL +\d+ +WHEN +\$STOPMESS *== *TRUE +DO +IR_STOPM *\( *\))");
-  static const std::regex interrupt_switch(R"(INTERRUPT +(ON|OFF|ENABLE|DISABLE) +\d+)");
-  static const std::regex wait(R"(WAIT +(SEC|FOR) +.+)");
   if (word == "DEF" || word == "END" || u == "HALT" || u == "INI" ||
       (u.rfind('&', 0) == 0 && identifier(u.substr(1, u.find_first_of(" \t") - 1))) ||
-      std::regex_match(u, stop_interrupt) || std::regex_match(u, interrupt_switch) ||
-      std::regex_match(u, wait))
+      passes_as_written(u))
     return;
   if (control_flow(word))
     return unknown(
@@ -326,15 +353,17 @@ void krl_statement(const Statement& s, KrlState& st, const RobotOptions& options
 /// and is not read.
 std::pair<std::map<int, Frame>, std::map<int, Frame>> read_config(const std::string& text,
                                                                   const std::string& source) {
-  static const std::regex entry(R"(^(TOOL_DATA|BASE_DATA) *\[ *(\d+) *\] *= *(\{.*\})$)",
-                                std::regex::icase);
   std::pair<std::map<int, Frame>, std::map<int, Frame>> out;
   for (const Statement& s : krl_lines(text, source)) {
-    std::smatch m;
-    if (!std::regex_match(s.text, m, entry)) continue;
-    const int n = frame_number(m[2], s, "frame number");
-    (upper(m[1].str()) == "TOOL_DATA" ? out.first : out.second)[n] =
-        frame_of(krl_aggregate(m[3], s));
+    const std::string u = upper(s.text);
+    const bool tool = u.rfind("TOOL_DATA", 0) == 0, base = u.rfind("BASE_DATA", 0) == 0;
+    const auto open = u.find('['), close = u.find(']'), eq = u.find('=');
+    if (!(tool || base) || open == std::string::npos || close == std::string::npos ||
+        eq == std::string::npos || !(open < close && close < eq) ||
+        !trim(u.substr(9, open - 9)).empty() || !trim(u.substr(close + 1, eq - close - 1)).empty())
+      continue;  // not an entry TOOL_DATA[n] = {...} or BASE_DATA[n] = {...}
+    const int n = frame_number(u.substr(open + 1, close - open - 1), s, "frame number");
+    (tool ? out.first : out.second)[n] = frame_of(krl_aggregate(s.text.substr(eq + 1), s));
   }
   return out;
 }
