@@ -1,10 +1,12 @@
 // io/src/robot_krl.cpp: KUKA KRL programs (.src with their .dat) read as pose files, each move
 // with the tool and base the robot uses for it. Every statement is a construct this reader
 // knows by its exact name, or it is refused.
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <optional>
 #include <qmotion/kernel/quaternion.hpp>
 #include <set>
 #include <utility>
@@ -148,13 +150,20 @@ struct Move {
   Statement where;
 };
 
-int frame_number(const std::string& text, const Statement& s, const char* what) {
-  const std::string t = trim(text);
+/// A KUKA frame number, 0 to 999; nullopt for anything else.
+std::optional<int> parsed_frame_number(const std::string& t) {
   int n = -1;
   const auto r = std::from_chars(t.data(), t.data() + t.size(), n);
   if (t.empty() || r.ec != std::errc() || r.ptr != t.data() + t.size() || n < 0 || n > 999)
-    refuse(s, std::string(what) + ": expected a frame number 0 to 999, found '" + t + "'");
+    return std::nullopt;
   return n;
+}
+
+int frame_number(const std::string& text, const Statement& s, const char* what) {
+  const std::string t = trim(text);
+  const auto n = parsed_frame_number(t);
+  if (!n) refuse(s, std::string(what) + ": expected a frame number 0 to 999, found '" + t + "'");
+  return *n;
 }
 
 /// $TOOL = TOOL_DATA[n] or $NULLFRAME; $BASE = BASE_DATA[n], $WORLD or $NULLFRAME.
@@ -189,13 +198,14 @@ void activate_fdat(const std::string& name, const Statement& s,
 void bas_call(const std::string& args_text, const Statement& s, FrameState& frames) {
   const auto args = split_top(args_text);
   const std::string what = upper(args.front());
-  static const std::set<std::string> settings{"#INITMOV", "#PTP_PARAMS", "#CP_PARAMS", "#PTP_DAT",
-                                              "#CP_DAT",  "#VEL_PTP",    "#ACC_PTP",   "#VEL_CP",
-                                              "#ACC_CP",  "#FRAMES",     "#TOOL",      "#BASE"};
-  if (!settings.count(what))
-    refuse(s, "BAS(" + args.front() + ", ...) is not a setting the reader knows (" +
-                  "#INITMOV, #PTP_PARAMS, #CP_PARAMS, #PTP_DAT, #CP_DAT, #VEL_PTP, #ACC_PTP, "
-                  "#VEL_CP, #ACC_CP, #FRAMES, #TOOL, #BASE)");
+  static const std::vector<std::string> settings{
+      "#INITMOV", "#PTP_PARAMS", "#CP_PARAMS", "#PTP_DAT", "#CP_DAT", "#VEL_PTP",
+      "#ACC_PTP", "#VEL_CP",     "#ACC_CP",    "#FRAMES",  "#TOOL",   "#BASE"};
+  if (std::find(settings.begin(), settings.end(), what) == settings.end()) {
+    std::string known;
+    for (const auto& w : settings) known += (known.empty() ? "" : ", ") + w;
+    refuse(s, "BAS(" + args.front() + ", ...) is not a setting the reader knows (" + known + ")");
+  }
   if (what == "#TOOL" || what == "#BASE") {
     if (args.size() != 2) refuse(s, "BAS(" + what + ", n) expects a frame number");
     (what == "#TOOL" ? frames.tool : frames.base) = frame_number(args[1], s, what.c_str());
@@ -385,21 +395,17 @@ const Move* differing(const std::vector<Move>& moves, bool tool) {
 std::string two_frames(const Move& a, const Move& b, bool tool) {
   const char* table = tool ? "TOOL_DATA" : "BASE_DATA";
   return "this move uses " + frame_name(table, tool ? b.frames.tool : b.frames.base) + ", " +
-         a.where.where.substr(a.where.where.rfind("line")) + " uses " +
-         frame_name(table, tool ? a.frames.tool : a.frames.base);
+         a.where.line() + " uses " + frame_name(table, tool ? a.frames.tool : a.frames.base);
 }
 
 /// An option's frame number (--tool, --base).
 int option_frame(const std::string& value, const char* option) {
-  int n = -1;
-  const auto r = std::from_chars(value.data(), value.data() + value.size(), n);
-  if (value.empty() || r.ec != std::errc() || r.ptr != value.data() + value.size() || n < 0 ||
-      n > 999)
-    throw Error(Errc::invalid_input, std::string(option) +
-                                         ": expected a KUKA frame number 0 to "
-                                         "999, found '" +
-                                         value + "'");
-  return n;
+  const auto n = parsed_frame_number(value);
+  if (!n)
+    throw Error(
+        Errc::invalid_input,
+        std::string(option) + ": expected a KUKA frame number 0 to 999, found '" + value + "'");
+  return *n;
 }
 
 /// The poses as written: the moves must share one tool and one base.

@@ -292,11 +292,9 @@ std::vector<PoseInput> world_poses(std::vector<Move> moves, const Names& data,
   for (const Move& m : moves)
     if (upper(m.tool) != upper(moves.front().tool) && !other) other = &m;
   if (other && o.tool.empty())
-    refuse(other->where,
-           "this move uses the tool '" + other->tool + "', " +
-               moves.front().where.where.substr(moves.front().where.where.rfind("line")) +
-               " uses '" + moves.front().tool +
-               "': name the TCP to express every pose for with --tool");
+    refuse(other->where, "this move uses the tool '" + other->tool + "', " +
+                             moves.front().where.line() + " uses '" + moves.front().tool +
+                             "': name the TCP to express every pose for with --tool");
   const bool map_tool = !o.tool.empty() && (other || upper(o.tool) != upper(moves.front().tool));
   const Frame tcp = map_tool ? tool_frame(data, o.tool, {o.tool, "--tool"}) : Frame{};
   for (Move& m : moves) {

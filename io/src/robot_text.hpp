@@ -24,6 +24,9 @@ std::vector<std::pair<int, std::string>> code_lines(const std::string& text, cha
 struct Statement {
   std::string text;
   std::string where;
+
+  /// "line N", for messages that name a second statement beside the first.
+  std::string line() const { return where.substr(where.rfind("line")); }
 };
 
 [[noreturn]] inline void refuse(const Statement& s, const std::string& why) {

@@ -57,8 +57,7 @@ Number millimetres(const Number& metres) {
   }
   Number mm;
   mm.text = (digits == "0" ? "" : sign) + digits;
-  mm.value = metres.value * 1000;
-  std::from_chars(mm.text.begin(), mm.text.end(), mm.value);
+  std::from_chars(mm.text.begin(), mm.text.end(), mm.value);  // the shifted text, rounded once
   return mm;
 }
 
