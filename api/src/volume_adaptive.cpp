@@ -160,9 +160,12 @@ class Mesher {
     for (const auto& [k, c] : octree_.leaves())
       if (c.kind == Octree::Kind::unknown) todo.push_back(k);
     std::vector<Octree::Kind> kind(todo.size());
+    std::vector<int> node(todo.size());
     tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t i) {
       const double r = half_diagonal(todo[i]);
-      const auto d = tree_.query(centre(todo[i]), -(r + 2 * tree_.largest_leaf_delta()));
+      const auto d = tree_.query(centre(todo[i]), -(r + 2 * tree_.largest_leaf_delta()),
+                                 octree_.leaves().at(todo[i]).node);
+      node[i] = d.node;
       if (d.lower - r > tau_ + eps_)
         kind[i] = Octree::Kind::far;
       else if (d.signed_upper + r + tree_.largest_leaf_delta() + 1e-12 * scale_ < 0)
@@ -173,6 +176,7 @@ class Mesher {
     queries_ += todo.size();
     for (std::size_t i = 0; i < todo.size(); ++i) {
       octree_.cell(todo[i]).kind = kind[i];
+      octree_.cell(todo[i]).node = node[i];
       if (kind[i] == Octree::Kind::deep) {
         const double s = static_cast<double>(Octree::size(Octree::level(todo[i]))) * octree_.unit();
         deep_volume_ += s * s * s;
@@ -203,34 +207,38 @@ class Mesher {
 
   /// phi at every corner of the near leaves' tetrahedra not yet known.
   void evaluate(const std::vector<Leaf*>& near) {
-    std::vector<std::vector<OctKey>> want(near.size());
+    // Each corner with the time tree's node of a leaf about it, its search's first guess.
+    std::vector<std::vector<std::pair<OctKey, int>>> want(near.size());
     tbb::parallel_for(std::size_t(0), near.size(), [&](std::size_t i) {
       std::vector<Octree::Tet> tets;
       octree_.tets(near[i]->key, tets);
+      const int hint = octree_.leaves().at(near[i]->key).node;
       for (const auto& t : tets)
         for (const auto& p : t) {
           const OctKey k = Octree::vertex_key(p);
-          if (!value_.count(k)) want[i].push_back(k);
+          if (!value_.count(k)) want[i].push_back({k, hint});
         }
     });
-    std::vector<OctKey> all;
+    std::vector<std::pair<OctKey, int>> all;
     for (auto& w : want) all.insert(all.end(), w.begin(), w.end());
     std::sort(all.begin(), all.end());
-    all.erase(std::unique(all.begin(), all.end()), all.end());
+    all.erase(std::unique(all.begin(), all.end(),
+                          [](const auto& x, const auto& y) { return x.first == y.first; }),
+              all.end());
     std::vector<Value> v(all.size());
     tbb::parallel_for(std::size_t(0), all.size(), [&](std::size_t i) {
-      const OctPoint p = Octree::vertex_point(all[i]);
+      const OctPoint p = Octree::vertex_point(all[i].first);
       // Deeper than twice the coarsest cell the corner belongs to, the depth is not needed.
       const double reach = 2 * static_cast<double>(Octree::alignment(p)) * octree_.unit();
-      const auto d = tree_.query(octree_.position(p), -reach);
+      const auto d = tree_.query(octree_.position(p), -reach, all[i].second);
       double x = d.signed_upper;
       // No corner on the level: within eps of tau it is moved below (the surface's vertices
       // are bounded where they lie, whatever phi is).
       if (std::abs(x - tau_) < eps_) x = tau_ - eps_;
-      v[i] = {x, d.t};
+      v[i] = {x, d.t, d.node};
     });
     queries_ += all.size();
-    for (std::size_t i = 0; i < all.size(); ++i) value_.emplace(all[i], v[i]);
+    for (std::size_t i = 0; i < all.size(); ++i) value_.emplace(all[i].first, v[i]);
   }
 
   Eigen::Vector3d on_edge(const EdgeKey& e) const {
@@ -334,7 +342,7 @@ class Mesher {
     std::vector<Bound> b(todo.size());
     tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t i) {
       const Eigen::Vector3d x = on_edge(todo[i]);
-      b[i].d = tree_.query(x, 0);
+      b[i].d = tree_.query(x, 0, value_.at(todo[i].a).node);
       const Eigen::Matrix4d f = motion_.frame(b[i].d.t);
       const Eigen::Matrix3d R = f.block<3, 3>(1, 1);
       Eigen::Vector3d g;
@@ -347,21 +355,44 @@ class Mesher {
 
   /// A leaf passes when every vertex of its triangles is within T (less the rounding e) and
   /// every triangle is clear of V by e. Unchanged triangles that passed are not asked again.
+  /// The hull of all its vertices is asked first: the pieces it is clear of, each triangle
+  /// in it is too, and the triangles are asked only of the others.
   void certify(Leaf& L) const {
     if (L.ok && L.tris == L.checked) return;
     L.ok = false;
+    std::vector<EdgeKey> keys;
     for (const Tri& t : L.tris)
-      for (const EdgeKey& e : t)
+      for (const EdgeKey& e : t) {
         if (!(certified_distance(bound_.at(e).d, scale_) + e_ <= T_)) return;
-    for (const Tri& t : L.tris) {
-      std::array<Eigen::Vector3d, 3> p;
-      for (int i = 0; i < 3; ++i)
-        p[static_cast<std::size_t>(i)] = on_edge(t[static_cast<std::size_t>(i)]);
-      Eigen::Vector3d n = (p[1] - p[0]).cross(p[2] - p[0]), m = Eigen::Vector3d::Zero();
-      n = n.norm() > 0 ? Eigen::Vector3d(n.normalized()) : Eigen::Vector3d::UnitZ();
-      for (const EdgeKey& e : t) m += bound_.at(e).n;
-      m = m.norm() > 0 ? Eigen::Vector3d(m.normalized()) : n;
-      if (!hulls_.clear(p, {m, n}, e_)) return;
+        keys.push_back(e);
+      }
+    std::sort(keys.begin(), keys.end(), [](const EdgeKey& x, const EdgeKey& y) {
+      return x.a < y.a || (x.a == y.a && x.b < y.b);
+    });
+    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+    std::vector<Eigen::Vector3d> pts;
+    Eigen::Vector3d m = Eigen::Vector3d::Zero(), n = Eigen::Vector3d::Zero();
+    for (const EdgeKey& e : keys) {
+      pts.push_back(on_edge(e));
+      m += bound_.at(e).n;
+    }
+    std::vector<std::array<Eigen::Vector3d, 3>> tris(L.tris.size());
+    for (std::size_t i = 0; i < tris.size(); ++i) {
+      for (int k = 0; k < 3; ++k)
+        tris[i][static_cast<std::size_t>(k)] = on_edge(L.tris[i][static_cast<std::size_t>(k)]);
+      n += (tris[i][1] - tris[i][0]).cross(tris[i][2] - tris[i][0]);
+    }
+    const auto unit = [](const Eigen::Vector3d& u, const Eigen::Vector3d& or_else) {
+      return u.norm() > 0 ? Eigen::Vector3d(u.normalized()) : or_else;
+    };
+    n = unit(n, Eigen::Vector3d::UnitZ());
+    const auto left = hulls_.unclear(pts, {unit(m, n), n}, e_);
+    for (std::size_t i = 0; i < tris.size(); ++i) {
+      const auto& p = tris[i];
+      const Eigen::Vector3d nt = unit((p[1] - p[0]).cross(p[2] - p[0]), Eigen::Vector3d::UnitZ());
+      Eigen::Vector3d mt = Eigen::Vector3d::Zero();
+      for (const EdgeKey& e : L.tris[i]) mt += bound_.at(e).n;
+      if (!hulls_.clear_of(p, {unit(mt, nt), nt}, e_, left)) return;
     }
     L.checked = L.tris;
     L.ok = true;
@@ -435,8 +466,9 @@ class Mesher {
   double T_, tau_, e_, eps_, scale_;
   Octree octree_;
   struct Value {
-    double v = 0;  ///< phi
-    double t = 0;  ///< the placement that gave it
+    double v = 0;   ///< phi
+    double t = 0;   ///< the placement that gave it
+    int node = -1;  ///< the time tree's node of that placement
   };
   std::unordered_map<OctKey, Value> value_;
   std::map<OctKey, Leaf> leaves_;

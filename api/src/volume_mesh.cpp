@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <qmotion/api/volume.hpp>
 #include <qmotion/kernel/error.hpp>
 #include <qmotion/sweep/hull_pieces.hpp>
@@ -104,7 +105,10 @@ SweptVolume swept_volume(const Motion& motion, const sweep::Body& body, std::opt
   out.tolerance = tol ? *tol : 1e-3 * sampled.diagonal().norm();
   const double T = out.tolerance;
   detail::refuse_octree(motion, sampled, T);
-  const sweep::SweptVolumeTree tree(motion, body, 0.1 * T);
+  const sweep::SweptVolumeTree tree(
+      motion, body, 0.1 * T, [](std::size_t n, const std::function<void(std::size_t)>& f) {
+        tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) { f(i); });
+      });
   out.time_pieces = tree.leaves();
   out.piece_delta = tree.largest_leaf_delta();
   const sweep::HullPieces hulls(motion, body, 0.05 * T);

@@ -36,7 +36,8 @@ OctKey Octree::find(const OctPoint& p, int hint) const {
 
 void Octree::split(OctKey c, std::vector<OctKey>* made) {
   const int l = level(c);
-  const Kind kind = leaves_.at(c).kind;
+  const Cell parent = leaves_.at(c);
+  const Kind kind = parent.kind;
   leaves_.erase(c);
   split_.push_back(c);
   const OctPoint o = corner(c);
@@ -46,6 +47,7 @@ void Octree::split(OctKey c, std::vector<OctKey>* made) {
         cell_key(l + 1, o[0] / s + (q & 1), o[1] / s + (q >> 1 & 1), o[2] / s + (q >> 2 & 1));
     Cell cell;
     cell.kind = kind == Kind::far || kind == Kind::deep ? kind : Kind::unknown;
+    cell.node = parent.node;
     leaves_.emplace(child, cell);
     if (made) made->push_back(child);
   }

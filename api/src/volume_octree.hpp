@@ -31,6 +31,7 @@ class Octree {
   enum class Kind : std::uint8_t { unknown, far, deep, near };
   struct Cell {
     Kind kind = Kind::unknown;
+    int node = -1;  ///< the time tree's node of its centre's query (its parent's until then)
   };
 
   /// Roots of edge `root` from `origin`, n[a] of them along each axis (n[a] <= 32).

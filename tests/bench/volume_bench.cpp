@@ -99,6 +99,9 @@ BENCHMARK(BM_VolumeScene)
     ->Args({1, 0, 50})
     ->Args({1, 1, 50})
     ->Args({0, 0, 10})
+    ->Args({0, 1, 10})
+    ->Args({1, 0, 10})
+    ->Args({1, 1, 10})
     ->Unit(benchmark::kSecond)
     ->Iterations(1);
 

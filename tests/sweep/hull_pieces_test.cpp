@@ -3,7 +3,8 @@
 // of the swept volume: never given to a triangle through a point of it (placed by the exact
 // motion at a random time, a point inside or on the body), and given to triangles far from
 // it (farther than the body's reach from the path); for a mesh body that is not convex, the
-// same of what its boundary sweeps.
+// same of what its boundary sweeps; a patch of points asked once, then its triangles of
+// only what the patch was not cleared of.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -13,6 +14,7 @@
 #include <qmotion/sweep/hull_pieces.hpp>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "io_test_util.hpp"
 
@@ -81,6 +83,10 @@ TEST_P(Certificate, NeverClearsATriangleThroughTheVolumeAndClearsFarOnes) {
       const auto tri = triangle_about(x, 1e-3 + 0.2 * u(g), g);
       V3 nrm = (tri[1] - tri[0]).cross(tri[2] - tri[0]).normalized();
       cleared += hulls.clear(tri, {nrm, V3(-nrm)}, 0);
+      // A patch about it, asked once (unclear), then the triangle of only what is left.
+      std::vector<V3> patch(tri.begin(), tri.end());
+      for (int k = 0; k < 5; ++k) patch.push_back(triangle_about(x, 0.3 * u(g), g)[0]);
+      cleared += hulls.clear_of(tri, {nrm, V3(-nrm)}, 0, hulls.unclear(patch, {nrm, V3(-nrm)}, 0));
     }
     EXPECT_EQ(cleared, 0) << spec;
     // Far: 10 mm above the highest point the body reaches (the motion stays below z = 3 + 5).
@@ -88,8 +94,11 @@ TEST_P(Certificate, NeverClearsATriangleThroughTheVolumeAndClearsFarOnes) {
     for (int i = 0; i < 200; ++i) {
       const V3 x(12 * u(g), 4 * u(g) - 2, 20 + 5 * u(g));
       far += hulls.clear(triangle_about(x, 0.5, g), {V3(0, 0, 1), V3(0, 0, 1)}, 0);
+      std::vector<V3> patch;
+      for (int k = 0; k < 4; ++k) patch.push_back(triangle_about(x, 0.5, g)[0]);
+      far += hulls.unclear(patch, {V3(0, 0, 1), V3(0, 0, 1)}, 0).empty();
     }
-    EXPECT_EQ(far, 200) << spec;
+    EXPECT_EQ(far, 400) << spec;
   }
 }
 
@@ -101,7 +110,15 @@ TEST_P(Certificate, CoversWhatAMeshBodysBoundarySweeps) {
   auto body = qmotion::io::read_body(qmotion::test::test_data("bodies/bracket.obj"));
   for (auto& v : body.mesh.vertices) v /= 6;
   const qmotion::sweep::HullPieces hulls(m, body, 5e-4);
-  EXPECT_EQ(hulls.parts(), body.mesh.triangles.size());
+  // Not convex, so more than one part; its flat faces' triangles share patches.
+  EXPECT_GE(hulls.parts(), 2u);
+  EXPECT_LT(hulls.parts(), body.mesh.triangles.size());
+  // A convex mesh of 12 triangles (a box) is one patch.
+  qmotion::sweep::Body box;
+  box.kind = qmotion::sweep::Body::Kind::mesh;
+  box.mesh = qmotion::sweep::triangulate(qmotion::io::read_body("box:1,1.5,2"), 1e-2);
+  ASSERT_EQ(box.mesh.triangles.size(), 12u);
+  EXPECT_EQ(qmotion::sweep::HullPieces(m, box, 5e-4).parts(), 1u);
   std::mt19937 g(17);
   std::uniform_real_distribution<double> u(0, 1);
   int cleared = 0;

@@ -1,12 +1,14 @@
 // tests/sweep/swept_volume_test.cpp mirrors sweep/swept_volume.hpp: the tree's bounds of the
 // distance f(x) from a point to the swept volume by branch and bound (query), against f
-// measured by a search on t of the test's own (dense samples, then golden sections); and the
+// measured by a search on t of the test's own (dense samples, then golden sections), with and
+// without a first guess, and built span by span in any order; and the
 // subgradient of a convex body's signed distance (sweep/body.hpp) that the adaptive mesh
 // tries as a separating direction.
 #include <gtest/gtest.h>
 
 #include <cctype>
 #include <cmath>
+#include <functional>
 #include <qmotion/io/bodies.hpp>
 #include <qmotion/qmotion.hpp>
 #include <qmotion/sweep/swept_volume.hpp>
@@ -106,10 +108,41 @@ TEST_P(TreeBounds, BracketTheMeasuredDistance) {
       EXPECT_LE(full.signed_upper, f + leaf + eps);
       ASSERT_GE(full.node, 0);
       EXPECT_NEAR(tree.node_distance(x, full.node), full.signed_upper, eps);
+      // A first guess (any node) changes the order of the search, not its best placement,
+      // and the lower bound stays a bound.
+      const int hint = static_cast<int>(u(g) * static_cast<double>(tree.nodes().size()));
+      const auto guessed = tree.query(x, -HUGE_VAL, hint);
+      EXPECT_EQ(guessed.signed_upper, full.signed_upper);
+      EXPECT_LE(guessed.lower, f + eps);
+      EXPECT_GE(guessed.lower, f - leaf - slop);
       outside += f > 0;
     }
   }
   EXPECT_GT(outside, 300);  // most points are outside V, where the bounds are measured
+}
+
+// The spans' trees (a KKS spline: one per pair of poses) built in any order (here last
+// first, as threads may) make the same tree.
+TEST(TreeBuild, TheSpansInAnyOrderMakeTheSameTree) {
+  const Motion m = helix(false);
+  const auto body = body_of("cutter:ball,6,20");
+  const qmotion::sweep::SweptVolumeTree serial(m, body, 0.05);
+  const qmotion::sweep::SweptVolumeTree reversed(
+      m, body, 0.05, [](std::size_t n, const std::function<void(std::size_t)>& f) {
+        for (std::size_t i = n; i-- > 0;) f(i);
+      });
+  ASSERT_GT(serial.roots().size(), 1u);
+  EXPECT_EQ(serial.roots(), reversed.roots());
+  EXPECT_EQ(serial.leaves(), reversed.leaves());
+  ASSERT_EQ(serial.nodes().size(), reversed.nodes().size());
+  for (std::size_t i = 0; i < serial.nodes().size(); ++i) {
+    const auto &a = serial.nodes()[i], &b = reversed.nodes()[i];
+    EXPECT_EQ(a.t0, b.t0);
+    EXPECT_EQ(a.t1, b.t1);
+    EXPECT_EQ(a.delta, b.delta);
+    EXPECT_EQ(a.child[0], b.child[0]);
+    EXPECT_EQ(a.child[1], b.child[1]);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Bodies, TreeBounds,

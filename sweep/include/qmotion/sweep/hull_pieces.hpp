@@ -63,7 +63,8 @@ inline Eigen::Vector3d support_point(const Body& body, const Eigen::Vector3d& u)
 /// C, whose support point is the placed body's of the larger hi.
 ///
 /// A closed mesh body B is not convex: the pieces then cover what its boundary sweeps, part
-/// by part, each part one of its triangles (under a tree of them, `Part`). A
+/// by part, each part a convex patch of its triangles or one of them (under a tree of
+/// them, `Part`; build_parts). A
 /// triangle clear of that is outside V = U M(t) B when one of its points lies outside
 /// M(t0) B for one t0: a point that never meets M(t) dB is inside
 /// M(t) B for every t or for none (docs/geometry.md, "The adaptive mesh").
@@ -86,7 +87,7 @@ class HullPieces {
     if (is_convex(body))
       parts_.push_back(convex_ball(body));
     else
-      build_parts(body.mesh);
+      build_parts(body.mesh, delta_max);
     KeyframeOptions opt;
     opt.tol = delta_max;
     opt.radius = rho_;
@@ -144,58 +145,95 @@ class HullPieces {
   /// triangle's own); GJK's after them.
   bool clear(const std::array<Eigen::Vector3d, 3>& tri, const std::array<Eigen::Vector3d, 2>& dirs,
              double margin, Stats* stats = nullptr) const {
-    // Each pair popped pushes two whose depths add one more: the stack holds at most the
-    // two trees' depths added (build() and split_part() halve, so each is a log2 of its size).
-    std::pair<int, int> stack[kStack];
-    int top = 0;
-    stack[top++] = {0, 0};
-    // The directions tried: the two given, and the last that GJK found (consecutive pieces
-    // are apart along much the same direction).
-    Directions d;
-    for (int i = 0; i < 2; ++i) d.add(dirs[static_cast<std::size_t>(i)], tri);
-    const double slack = margin + rounding_;
-    // A ball about the triangle: pairs whose ball lies beyond it need no nearest point.
-    const Eigen::Vector3d tc = (tri[0] + tri[1] + tri[2]) / 3;
-    const double tr = std::sqrt(std::max({(tri[0] - tc).squaredNorm(), (tri[1] - tc).squaredNorm(),
-                                          (tri[2] - tc).squaredNorm()})) *
-                      (1 + 1e-12);
-    while (top > 0) {
-      const auto [ki, pi] = stack[--top];
-      const Node& nd = nodes_[static_cast<std::size_t>(ki)];
-      const Part& P = parts_[static_cast<std::size_t>(pi)];
-      if (stats) ++stats->node_tests;
-      const Map& Mm = keys_[static_cast<std::size_t>(nd.key)];
-      const Eigen::Vector3d c =
-          pi == 0 ? nd.centre : Eigen::Vector3d(Mm.col(0) + Mm.rightCols<3>() * P.centre);
-      const double ball = P.radius + nd.reach + slack;
-      if ((c - tc).norm() > ball + tr) continue;
-      if ((detail::closest_on_triangle(c, tri[0], tri[1], tri[2]) - c).norm() > ball) continue;
-      const bool leaf_part = P.child < 0, leaf_node = nd.child[0] < 0;
-      if (leaf_part) {
-        bool apart = false;
-        for (int i = 0; i < d.n && !apart; ++i)
-          apart = d.low[i] - support(nd.key, P, d.n_[i]) > nd.reach + slack;
-        if (apart) continue;
-      }
-      if (leaf_part && leaf_node) {
-        if (stats) ++stats->piece_tests;
-        if (!piece_clear(nd.lo, P, tri, d, margin, stats)) return false;
-        continue;
-      }
-      if (!leaf_part && (leaf_node || P.radius >= nd.reach)) {
-        stack[top++] = {ki, P.child};
-        stack[top++] = {ki, P.child + 1};
-      } else {
-        stack[top++] = {nd.child[0], pi};
-        stack[top++] = {nd.child[1], pi};
-      }
-    }
-    return true;
+    return walk(tri.data(), 3, dirs, margin, stats, nullptr, nullptr);
+  }
+
+  /// Pairs of a piece's node of the tree over the keys and a part of the body.
+  using Pairs = std::vector<std::pair<int, int>>;
+  /// The pieces (with the parts) that the convex hull of `pts` could not be cleared of, as
+  /// clear() tries: every other piece is clear of the hull, so of every triangle in it. A
+  /// patch of the surface is asked once, and then each of its triangles only of these
+  /// (clear_of), which are few where the patch lies near V and none elsewhere.
+  Pairs unclear(const std::vector<Eigen::Vector3d>& pts, const std::array<Eigen::Vector3d, 2>& dirs,
+                double margin, Stats* stats = nullptr) const {
+    Pairs left;
+    if (!pts.empty()) walk(pts.data(), pts.size(), dirs, margin, stats, &left, nullptr);
+    return left;
+  }
+  /// clear() of the triangle, asked only of `pairs` (from unclear() of points whose hull holds
+  /// the triangle).
+  bool clear_of(const std::array<Eigen::Vector3d, 3>& tri,
+                const std::array<Eigen::Vector3d, 2>& dirs, double margin, const Pairs& pairs,
+                Stats* stats = nullptr) const {
+    return pairs.empty() || walk(tri.data(), 3, dirs, margin, stats, nullptr, &pairs);
   }
 
  private:
   using Map = Eigen::Matrix<double, 3, 4>;
   static constexpr int kStack = 160;  ///< more than two trees of 2^64 leaves need
+
+  /// The walk of clear() over the pairs (key node, part) from the roots, or from `seeds`,
+  /// for the hull of pts[0, n) (a triangle when n is 3). A pair of a piece and a part that is
+  /// not cleared ends the walk (false) or, with `left`, is appended there.
+  bool walk(const Eigen::Vector3d* pts, std::size_t n, const std::array<Eigen::Vector3d, 2>& dirs,
+            double margin, Stats* stats, Pairs* left, const Pairs* seeds) const {
+    // The directions tried: the two given, and the last that GJK found (consecutive pieces
+    // are apart along much the same direction).
+    Directions d;
+    for (int i = 0; i < 2; ++i) d.add(dirs[static_cast<std::size_t>(i)], pts, n);
+    const double slack = margin + rounding_;
+    // A ball about the points: pairs whose ball lies beyond it need no nearest point.
+    Eigen::Vector3d tc = Eigen::Vector3d::Zero();
+    for (std::size_t i = 0; i < n; ++i) tc += pts[i];
+    tc /= static_cast<double>(n);
+    double tr = 0;
+    for (std::size_t i = 0; i < n; ++i) tr = std::max(tr, (pts[i] - tc).squaredNorm());
+    tr = std::sqrt(tr) * (1 + 1e-12);
+    const std::size_t runs = seeds ? seeds->size() : 1;
+    for (std::size_t s = 0; s < runs; ++s) {
+      // Each pair popped pushes two whose depths add one more: the stack holds at most the
+      // two trees' depths added (build() and split_part() halve, so each is a log2 of its
+      // size).
+      std::pair<int, int> stack[kStack];
+      int top = 0;
+      stack[top++] = seeds ? (*seeds)[s] : std::pair<int, int>{0, 0};
+      while (top > 0) {
+        const auto [ki, pi] = stack[--top];
+        const Node& nd = nodes_[static_cast<std::size_t>(ki)];
+        const Part& P = parts_[static_cast<std::size_t>(pi)];
+        if (stats) ++stats->node_tests;
+        const Map& Mm = keys_[static_cast<std::size_t>(nd.key)];
+        const Eigen::Vector3d c =
+            pi == 0 ? nd.centre : Eigen::Vector3d(Mm.col(0) + Mm.rightCols<3>() * P.centre);
+        const double ball = P.radius + nd.reach + slack;
+        if ((c - tc).norm() > ball + tr) continue;
+        if (n == 3 && (detail::closest_on_triangle(c, pts[0], pts[1], pts[2]) - c).norm() > ball)
+          continue;
+        const bool leaf_part = P.child < 0, leaf_node = nd.child[0] < 0;
+        if (leaf_part) {
+          bool apart = false;
+          for (int i = 0; i < d.n && !apart; ++i)
+            apart = d.low[i] - support(nd.key, P, d.n_[i]) > nd.reach + slack;
+          if (apart) continue;
+        }
+        if (leaf_part && leaf_node) {
+          if (stats) ++stats->piece_tests;
+          if (piece_clear(nd.lo, P, pts, n, d, margin, stats)) continue;
+          if (!left) return false;
+          left->push_back({ki, pi});
+          continue;
+        }
+        if (!leaf_part && (leaf_node || P.radius >= nd.reach)) {
+          stack[top++] = {ki, P.child};
+          stack[top++] = {ki, P.child + 1};
+        } else {
+          stack[top++] = {nd.child[0], pi};
+          stack[top++] = {nd.child[1], pi};
+        }
+      }
+    }
+    return true;
+  }
   struct Node {
     int lo = 0, hi = 0, key = 0;  ///< pieces lo..hi-1, keys lo..hi; key: the middle one
     double reach = 0;
@@ -234,17 +272,36 @@ class HullPieces {
   }
 
   /// The parts of a mesh: its triangles halved at the median of their centroids along the
-  /// longest axis, down to one; a leaf holds its triangle's corners. (A leaf of several
-  /// triangles about a concave edge would cover the space outside it, which the surface
-  /// must not enter.)
-  void build_parts(const TriangleMesh& mesh) {
+  /// longest axis, down to a patch of at most kPatch triangles that is convex within eps
+  /// (every corner of the patch at most eps outside every triangle's plane), else to one; a
+  /// leaf holds its patch's corners, and covers the patch whatever it is. (A patch about a
+  /// concave edge would cover space outside the body, which the surface must not enter; a
+  /// convex one stays in the body, and one leaf for many thin triangles keeps the walk short.)
+  void build_parts(const TriangleMesh& mesh, double eps) {
     std::vector<int> order(mesh.triangles.size());
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
     parts_.emplace_back();
-    split_part(mesh, order, 0, 0, order.size());
+    split_part(mesh, order, 0, 0, order.size(), eps);
+  }
+  static constexpr std::size_t kPatch = 16;
+  /// Whether the triangles order[a, b) are convex within eps (see build_parts).
+  static bool convex_patch(const TriangleMesh& mesh, const std::vector<int>& order, std::size_t a,
+                           std::size_t b, double eps) {
+    auto at = [&](std::size_t i, int k) -> const Eigen::Vector3d& {
+      return mesh.vertices[static_cast<std::size_t>(
+          mesh.triangles[static_cast<std::size_t>(order[i])][static_cast<std::size_t>(k)])];
+    };
+    for (std::size_t i = a; i < b; ++i) {
+      const Eigen::Vector3d n = (at(i, 1) - at(i, 0)).cross(at(i, 2) - at(i, 0)).normalized();
+      if (!n.allFinite()) return false;
+      for (std::size_t j = a; j < b; ++j)
+        for (int k = 0; k < 3; ++k)
+          if (!(n.dot(at(j, k) - at(i, 0)) <= eps)) return false;
+    }
+    return true;
   }
   void split_part(const TriangleMesh& mesh, std::vector<int>& order, std::size_t at, std::size_t a,
-                  std::size_t b) {
+                  std::size_t b, double eps) {
     auto corner = [&](std::size_t i, int k) -> const Eigen::Vector3d& {
       return mesh.vertices[static_cast<std::size_t>(
           mesh.triangles[static_cast<std::size_t>(order[i])][static_cast<std::size_t>(k)])];
@@ -258,10 +315,15 @@ class HullPieces {
     for (std::size_t i = a; i < b; ++i)
       for (int k = 0; k < 3; ++k) p.radius = std::max(p.radius, (corner(i, k) - p.centre).norm());
     p.radius *= 1 + 1e-12;
-    if (b - a <= 1) {
+    if (b - a <= 1 || (b - a <= kPatch && convex_patch(mesh, order, a, b, eps))) {
       p.first = static_cast<int>(points_.size());
-      for (int k = 0; k < 3; ++k) points_.push_back(corner(a, k));
-      p.count = 3;
+      std::vector<int> corners;
+      for (std::size_t i = a; i < b; ++i)
+        for (int v : mesh.triangles[static_cast<std::size_t>(order[i])]) corners.push_back(v);
+      std::sort(corners.begin(), corners.end());
+      corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+      for (int v : corners) points_.push_back(mesh.vertices[static_cast<std::size_t>(v)]);
+      p.count = static_cast<int>(corners.size());
       parts_[at] = p;
       return;
     }
@@ -270,8 +332,8 @@ class HullPieces {
     parts_[at] = p;
     parts_.emplace_back();
     parts_.emplace_back();
-    split_part(mesh, order, static_cast<std::size_t>(p.child), a, mid);
-    split_part(mesh, order, static_cast<std::size_t>(p.child) + 1, mid, b);
+    split_part(mesh, order, static_cast<std::size_t>(p.child), a, mid, eps);
+    split_part(mesh, order, static_cast<std::size_t>(p.child) + 1, mid, b, eps);
   }
 
   /// The part's point farthest along u (a moving-space direction).
@@ -305,19 +367,22 @@ class HullPieces {
     return best;
   }
 
-  /// Directions with the triangle's least extent along each.
+  /// Directions with the points' least extent along each.
   struct Directions {
     Eigen::Vector3d n_[3];
     double low[3] = {0, 0, 0};
     int n = 0;
-    void add(const Eigen::Vector3d& u, const std::array<Eigen::Vector3d, 3>& tri) {
+    void add(const Eigen::Vector3d& u, const Eigen::Vector3d* pts, std::size_t m) {
       const int i = n < 3 ? n++ : 2;
       n_[i] = u;
-      low[i] = std::min({u.dot(tri[0]), u.dot(tri[1]), u.dot(tri[2])});
+      low[i] = HUGE_VAL;
+      for (std::size_t j = 0; j < m; ++j) low[i] = std::min(low[i], u.dot(pts[j]));
     }
   };
 
-  bool piece_clear(int k, const Part& P, const std::array<Eigen::Vector3d, 3>& tri,
+  /// Whether the hull of pts[0, m) is farther than margin from piece k of part P (grown by
+  /// its delta): along one of the directions, else along GJK's.
+  bool piece_clear(int k, const Part& P, const Eigen::Vector3d* pts, std::size_t m,
                    Directions& dirs, double margin, Stats* stats) const {
     const double need = delta_[static_cast<std::size_t>(k)] + margin + rounding_;
     for (int i = dirs.n - 1; i >= 0; --i) {
@@ -325,25 +390,27 @@ class HullPieces {
       if (dirs.low[i] - std::max(support(k, P, n), support(k + 1, P, n)) > need) return true;
     }
     if (stats) ++stats->gjk;
-    // GJK on D = triangle - C: v, the point of the simplex W nearest the origin, is a point
-    // of D, so |v| >= dist; w, D's point least along v, gives the plane v . x >= v . w that
-    // holds D: dist >= v . w / |v|, which is the separation along v / |v| above.
+    // GJK on D = H - C, H the hull of the points (a triangle, or a patch): v, the point of the
+    // simplex W nearest the origin, is a point of D, so |v| >= dist; w, D's point least along v,
+    // gives the plane v . x >= v . w that holds D: dist >= v . w / |v|, which is the separation
+    // along v / |v| above.
     Simplex W;
-    Eigen::Vector3d v = (tri[0] + tri[1] + tri[2]) / 3 - piece_support(k, P, -dirs.n_[0]);
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (std::size_t i = 0; i < m; ++i) mean += pts[i];
+    Eigen::Vector3d v = mean / static_cast<double>(m) - piece_support(k, P, -dirs.n_[0]);
     for (int it = 0; it < 48; ++it) {
       const double vn = v.norm();
       if (!(vn > need)) return false;
-      int lo = 0;
-      for (int i = 1; i < 3; ++i)
-        if (v.dot(tri[static_cast<std::size_t>(i)]) < v.dot(tri[static_cast<std::size_t>(lo)]))
-          lo = i;
-      const Eigen::Vector3d w = tri[static_cast<std::size_t>(lo)] - piece_support(k, P, v);
-      // d . w: the triangle's least extent along d less C's support value there (the
+      std::size_t lo = 0;
+      for (std::size_t i = 1; i < m; ++i)
+        if (v.dot(pts[i]) < v.dot(pts[lo])) lo = i;
+      const Eigen::Vector3d w = pts[lo] - piece_support(k, P, v);
+      // d . w: the points' least extent along d less C's support value there (the
       // support point above is C's farthest along v, so along d).
       const Eigen::Vector3d d = v / vn;
       const double low = d.dot(w);
       if (low > need) {
-        dirs.add(d, tri);
+        dirs.add(d, pts, m);
         return true;
       }
       if (vn * vn - v.dot(w) <= 1e-12 * vn * vn) return false;  // converged short of need

@@ -152,12 +152,15 @@ class MeshIndex {
     double best = cap * cap;
     int tri = -1, where = 6;
     Eigen::Vector3d near = x;
-    thread_local std::vector<int> stack;
-    stack.assign(1, 0);
-    while (!stack.empty() && !nodes_.empty()) {
-      const Node& nd = nodes_[static_cast<std::size_t>(stack.back())];
-      stack.pop_back();
-      if ((x - x.cwiseMax(nd.box.min()).cwiseMin(nd.box.max())).squaredNorm() >= best) continue;
+    // Each node popped pushes at most its two children: the stack holds at most the tree's
+    // depth plus one (build() halves, so a log2 of the size; kStack is far above).
+    std::pair<int, double> stack[kStack];
+    int top = 0;
+    if (!nodes_.empty()) stack[top++] = {0, box_distance(x, nodes_[0].box)};
+    while (top > 0) {
+      const auto [at, d2box] = stack[--top];
+      if (d2box >= best) continue;
+      const Node& nd = nodes_[static_cast<std::size_t>(at)];
       if (nd.count > 0) {
         for (int i = nd.first; i < nd.first + nd.count; ++i) {
           const int t = order_[static_cast<std::size_t>(i)];
@@ -174,13 +177,15 @@ class MeshIndex {
         }
         continue;
       }
-      // The nearer child last, so that it is searched first.
-      const Node &l = nodes_[static_cast<std::size_t>(nd.left)],
-                 &r = nodes_[static_cast<std::size_t>(nd.left + 1)];
-      const bool left_first =
-          (x - l.box.center()).squaredNorm() < (x - r.box.center()).squaredNorm();
-      stack.push_back(left_first ? nd.left + 1 : nd.left);
-      stack.push_back(left_first ? nd.left : nd.left + 1);
+      // The nearer child (by its box) last, so that it is searched first; a child whose box
+      // is already beyond the best is not pushed.
+      const double dl = box_distance(x, nodes_[static_cast<std::size_t>(nd.left)].box),
+                   dr = box_distance(x, nodes_[static_cast<std::size_t>(nd.left + 1)].box);
+      const bool left_first = dl < dr;
+      const std::pair<int, double> first{left_first ? nd.left : nd.left + 1, left_first ? dl : dr},
+          second{left_first ? nd.left + 1 : nd.left, left_first ? dr : dl};
+      if (second.second < best) stack[top++] = second;
+      if (first.second < best) stack[top++] = first;
     }
     if (tri < 0) return HUGE_VAL;
     const auto t = static_cast<std::size_t>(tri);
@@ -198,6 +203,11 @@ class MeshIndex {
   }
 
  private:
+  static constexpr int kStack = 128;
+  /// The squared distance from x to the box.
+  static double box_distance(const Eigen::Vector3d& x, const Eigen::AlignedBox3d& b) {
+    return (x - x.cwiseMax(b.min()).cwiseMin(b.max())).squaredNorm();
+  }
   struct Node {
     Eigen::AlignedBox3d box;
     int left = -1;  ///< children left and left + 1, or -1 for a leaf

@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <qmotion/kernel/error.hpp>
 #include <qmotion/motion.hpp>
 #include <qmotion/sweep/body.hpp>
@@ -53,9 +54,14 @@ class SweptVolumeTree {
     int child[2] = {-1, -1};
   };
 
+  /// Runs f(0), ..., f(n - 1), in any order and on any threads: each span's tree is built
+  /// by one call (api passes TBB's parallel_for; the default runs them in turn).
+  using ForEach = std::function<void(std::size_t n, const std::function<void(std::size_t)>& f)>;
+
   /// Errc::numerical_failure for a rational motion with a pole on its interval, or when a
   /// node narrower than 1e-12 of the interval cannot reach the leaf size.
-  SweptVolumeTree(const qmotion::Motion& m, const Body& body, double leaf_delta)
+  SweptVolumeTree(const qmotion::Motion& m, const Body& body, double leaf_delta,
+                  const ForEach& for_each = {})
       : motion_(m), body_(body), rho_(radius(body)), bound_(m, radius(body), 4), leaf_(leaf_delta) {
     ball_centre_ = ball_centre(body);
     for (const auto& v : body.mesh.vertices) mesh_box_.extend(v);
@@ -66,7 +72,25 @@ class SweptVolumeTree {
     // 1e-3 rho between them.
     ball_radius_ += 1e-3 * rho_ + 1e-12 * rho_;
     const auto x = m.breakpoints();
-    for (std::size_t i = 0; i + 1 < x.size(); ++i) roots_.push_back(build(x[i], x[i + 1], 0));
+    // A tree per span, numbered from 0 in it, then one list of nodes.
+    std::vector<Built> spans(x.size() > 0 ? x.size() - 1 : 0);
+    const auto one = [&](std::size_t i) { build(spans[i], x[i], x[i + 1], 0); };
+    if (for_each)
+      for_each(spans.size(), one);
+    else
+      for (std::size_t i = 0; i < spans.size(); ++i) one(i);
+    for (auto& b : spans) {
+      const int base = static_cast<int>(nodes_.size());
+      roots_.push_back(base);
+      for (Node n : b.nodes) {
+        for (int& c : n.child)
+          if (c >= 0) c += base;
+        nodes_.push_back(n);
+      }
+      leaves_ += b.leaves;
+      largest_leaf_ = std::max(largest_leaf_, b.largest);
+    }
+    if (nodes_.size() > max_nodes) too_many();
   }
 
   const std::vector<Node>& nodes() const { return nodes_; }
@@ -93,13 +117,25 @@ class SweptVolumeTree {
   /// distance to the placed body: a node is not opened when its lower bound is no better than
   /// the best placement's. Once a placement holds q, lower = 0 is exact and the search goes
   /// on for the deepest placement. It ends at the first placement whose signed distance is
-  /// below stop_below (<= 0: q lies in V that deep).
-  VolumeDistance query(const Eigen::Vector3d& q, double stop_below = 0) const {
+  /// below stop_below (<= 0: q lies in V that deep). `hint`, a node whose placement is
+  /// likely near the best (a neighbouring point's), is measured first: the search is
+  /// shorter, its best placement the same (every node that could do better is still
+  /// opened; with stop_below, the first found below it), and `lower` still a lower bound.
+  VolumeDistance query(const Eigen::Vector3d& q, double stop_below = 0, int hint = -1) const {
     VolumeDistance out;
     out.lower = HUGE_VAL;
     thread_local std::vector<std::pair<int, double>> stack;  // node, its parent's bound
     stack.clear();
     double best = HUGE_VAL;  // the smallest upper bound so far (signed)
+    if (hint >= 0 && static_cast<std::size_t>(hint) < nodes_.size()) {
+      best = node_distance(q, hint);
+      out.signed_upper = best;
+      found_at(out, hint);
+      if (best < stop_below) {
+        out.lower = 0;
+        return out;
+      }
+    }
     for (auto r = roots_.rbegin(); r != roots_.rend(); ++r) stack.emplace_back(*r, -HUGE_VAL);
     while (!stack.empty()) {
       const auto [i, parent_lb] = stack.back();
@@ -193,7 +229,21 @@ class SweptVolumeTree {
     }
   }
 
-  int build(double t0, double t1, int depth) {
+  /// One span's tree, its nodes numbered from 0.
+  struct Built {
+    std::vector<Node> nodes;
+    std::size_t leaves = 0;
+    double largest = 0;
+  };
+
+  [[noreturn]] void too_many() const {
+    throw Error(Errc::numerical_failure,
+                motion_.label() + ": more than " + std::to_string(max_nodes) +
+                    " parameter intervals to bound the swept volume within " +
+                    kernel::detail::format_double(leaf_) + ": the tolerance is too fine");
+  }
+
+  int build(Built& out, double t0, double t1, int depth) const {
     const double range = motion_.b() - motion_.a();
     Node n;
     n.t0 = t0;
@@ -210,11 +260,11 @@ class SweptVolumeTree {
     n.Rt = f.block<3, 3>(1, 1).transpose();
     n.p = f.block<3, 1>(1, 0);
     n.centre = n.p + f.block<3, 3>(1, 1) * ball_centre_;
-    const int index = static_cast<int>(nodes_.size());
-    nodes_.push_back(n);
+    const int index = static_cast<int>(out.nodes.size());
+    out.nodes.push_back(n);
     if (n.delta <= leaf_) {
-      ++leaves_;
-      largest_leaf_ = std::max(largest_leaf_, n.delta);
+      ++out.leaves;
+      out.largest = std::max(out.largest, n.delta);
       return index;
     }
     if (t1 - t0 < 1e-12 * range || depth > 60)
@@ -222,15 +272,11 @@ class SweptVolumeTree {
                   motion_.label() + ": cannot bound the swept volume within " +
                       kernel::detail::format_double(leaf_) + " near t = " +
                       kernel::detail::format_double(n.tm) + " (a pole, or a tolerance too fine)");
-    if (nodes_.size() > max_nodes)
-      throw Error(Errc::numerical_failure,
-                  motion_.label() + ": more than " + std::to_string(max_nodes) +
-                      " parameter intervals to bound the swept volume within " +
-                      kernel::detail::format_double(leaf_) + ": the tolerance is too fine");
-    const int c0 = build(t0, n.tm, depth + 1);
-    const int c1 = build(n.tm, t1, depth + 1);
-    nodes_[index].child[0] = c0;
-    nodes_[index].child[1] = c1;
+    if (out.nodes.size() > max_nodes) too_many();
+    const int c0 = build(out, t0, n.tm, depth + 1);
+    const int c1 = build(out, n.tm, t1, depth + 1);
+    out.nodes[static_cast<std::size_t>(index)].child[0] = c0;
+    out.nodes[static_cast<std::size_t>(index)].child[1] = c1;
     return index;
   }
 
