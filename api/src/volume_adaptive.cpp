@@ -49,6 +49,7 @@ double certified_distance(const sweep::VolumeDistance& d, double scale) {
 struct EdgeKey {
   OctKey a = 0, b = 0;
   bool operator==(const EdgeKey& o) const { return a == o.a && b == o.b; }
+  bool operator<(const EdgeKey& o) const { return a < o.a || (a == o.a && b < o.b); }
 };
 struct EdgeHash {
   std::size_t operator()(const EdgeKey& e) const {
@@ -335,9 +336,7 @@ class Mesher {
       for (const Tri& t : L->tris)
         for (const EdgeKey& e : t)
           if (!bound_.count(e)) todo.push_back(e);
-    std::sort(todo.begin(), todo.end(), [](const EdgeKey& x, const EdgeKey& y) {
-      return x.a < y.a || (x.a == y.a && x.b < y.b);
-    });
+    std::sort(todo.begin(), todo.end());
     todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
     std::vector<Bound> b(todo.size());
     tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t i) {
@@ -366,9 +365,7 @@ class Mesher {
         if (!(certified_distance(bound_.at(e).d, scale_) + e_ <= T_)) return;
         keys.push_back(e);
       }
-    std::sort(keys.begin(), keys.end(), [](const EdgeKey& x, const EdgeKey& y) {
-      return x.a < y.a || (x.a == y.a && x.b < y.b);
-    });
+    std::sort(keys.begin(), keys.end());
     keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
     std::vector<Eigen::Vector3d> pts;
     Eigen::Vector3d m = Eigen::Vector3d::Zero(), n = Eigen::Vector3d::Zero();

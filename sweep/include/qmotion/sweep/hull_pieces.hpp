@@ -284,12 +284,17 @@ class HullPieces {
     split_part(mesh, order, 0, 0, order.size(), eps);
   }
   static constexpr std::size_t kPatch = 16;
+  /// Corner k of the triangle order[i] of the mesh.
+  static const Eigen::Vector3d& corner_of(const TriangleMesh& mesh, const std::vector<int>& order,
+                                          std::size_t i, int k) {
+    return mesh.vertices[static_cast<std::size_t>(
+        mesh.triangles[static_cast<std::size_t>(order[i])][static_cast<std::size_t>(k)])];
+  }
   /// Whether the triangles order[a, b) are convex within eps (see build_parts).
   static bool convex_patch(const TriangleMesh& mesh, const std::vector<int>& order, std::size_t a,
                            std::size_t b, double eps) {
     auto at = [&](std::size_t i, int k) -> const Eigen::Vector3d& {
-      return mesh.vertices[static_cast<std::size_t>(
-          mesh.triangles[static_cast<std::size_t>(order[i])][static_cast<std::size_t>(k)])];
+      return corner_of(mesh, order, i, k);
     };
     for (std::size_t i = a; i < b; ++i) {
       const Eigen::Vector3d n = (at(i, 1) - at(i, 0)).cross(at(i, 2) - at(i, 0)).normalized();
@@ -303,8 +308,7 @@ class HullPieces {
   void split_part(const TriangleMesh& mesh, std::vector<int>& order, std::size_t at, std::size_t a,
                   std::size_t b, double eps) {
     auto corner = [&](std::size_t i, int k) -> const Eigen::Vector3d& {
-      return mesh.vertices[static_cast<std::size_t>(
-          mesh.triangles[static_cast<std::size_t>(order[i])][static_cast<std::size_t>(k)])];
+      return corner_of(mesh, order, i, k);
     };
     Eigen::AlignedBox3d box;
     for (std::size_t i = a; i < b; ++i)
