@@ -51,6 +51,8 @@ sweep::Profile<double> to_profile(const py::handle& p, const std::string& units)
   if (py::isinstance<sweep::Profile<double>>(p)) return p.cast<sweep::Profile<double>>();
   if (py::isinstance<sweep::NurbsCurve<double>>(p))
     return sweep::single_edge(p.cast<sweep::NurbsCurve<double>>());
+  if (py::isinstance<py::dict>(p)) return io::profile_from_json(from_python(p), "profile (dict)");
+  if (py::isinstance<py::list>(p)) return io::profile_from_json(from_python(p), "profile (list)");
   return io::read_profile(p.cast<std::string>(), units);
 }
 

@@ -52,5 +52,7 @@ void bind_geometry(py::module_& m);
 void bind_motion(py::module_& m);
 void bind_jobs(py::module_& m);
 void bind_pictures(py::module_& m);
+/// Needs bind_motion first (it adds to Motion).
+void bind_values(py::module_& m);
 
 }  // namespace qmotion::python

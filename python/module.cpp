@@ -41,4 +41,5 @@ PYBIND11_MODULE(qmotion, m) {
   qm::python::bind_motion(m);
   qm::python::bind_jobs(m);
   qm::python::bind_pictures(m);
+  qm::python::bind_values(m);
 }

@@ -56,18 +56,43 @@ py::array_t<double> control_points(const Motion& m) {
   return a;
 }
 
-PyMotion load(const std::string& path) {
-  // Read once: the text (save() writes it back as it was read), its tree as written
-  // (numbers as numbers, for to_dict), and the motion, refusals naming the file and field.
-  std::string text = io::read_text_file(path);
+/// A motion from its file's text, named `source`: its tree as written (numbers as numbers,
+/// for to_dict) and the motion, refusals naming the source and field.
+PyMotion from_text(std::string text, const std::string& source) {
   json document = json::parse(text, nullptr, /*allow_exceptions=*/false);
   if (io::is_qspline_document(document)) {
-    Motion motion = io::qspline_motion(document, path);
+    Motion motion = io::qspline_motion(document, source);
     return PyMotion{std::move(motion), std::nullopt, std::move(document), std::move(text)};
   }
-  io::MotionFile file = io::parse_motion_text(text, path);  // the digits, for info --exact
+  io::MotionFile file = io::parse_motion_text(text, source);  // the digits, for info --exact
   Motion motion(io::to_motion(file));
   return PyMotion{std::move(motion), std::move(file), std::move(document), std::move(text)};
+}
+
+/// Read once: save() writes the text back as it was read.
+PyMotion load(const std::string& path) { return from_text(io::read_text_file(path), path); }
+
+/// The pickled state: the motion file's text, which both kinds are rebuilt from by the
+/// parse that load() runs, and whether the text was the motion's own (save() writes it) or
+/// its document dumped. The rebuilt motion evaluates bit for bit as the original
+/// (tests/python/test_values.py): a rational motion is always built from its file's text,
+/// and a quaternion spline's document holds its keys and controls in shortest round-trip
+/// decimals.
+std::string motion_text(const PyMotion& p) {
+  return p.text.empty() ? p.document.dump(1) + "\n" : p.text;
+}
+
+py::tuple pickle_state(const PyMotion& p) {
+  return py::make_tuple(motion_text(p), !p.text.empty());
+}
+
+PyMotion unpickle(const py::tuple& state) {
+  if (state.size() != 2)
+    throw Error(Errc::invalid_input, "Motion pickle: expected (text, own), got " +
+                                         std::to_string(state.size()) + " items");
+  PyMotion p = from_text(state[0].cast<std::string>(), "<pickled motion>");
+  if (!state[1].cast<bool>()) p.text.clear();
+  return p;
 }
 
 void bind_motion_class(py::module_& m) {
@@ -82,6 +107,7 @@ void bind_motion_class(py::module_& m) {
             return p.motion.is_rational() ? "q-motion" : "quaternion-spline";
           },
           "'q-motion' (rational) or 'quaternion-spline'")
+      .def(py::pickle(&pickle_state, &unpickle))
       .def_property_readonly(
           "rational", [](const PyMotion& p) { return p.motion.is_rational(); },
           "True for a rational Q-motion")
@@ -187,6 +213,9 @@ void bind_motion_class(py::module_& m) {
       .def(
           "to_dict", [](const PyMotion& p) { return to_python(p.document); },
           "The motion file's document (docs/formats.md) as a dict")
+      .def("dumps", &motion_text,
+           "The motion file's text, what save writes; qmotion.loads(text) gives the motion back "
+           "bit for bit")
       .def(
           "save",
           [](const PyMotion& p, const std::string& path) {
@@ -204,6 +233,11 @@ void bind_motion(py::module_& m) {
   m.def("load", &load, py::arg("path"),
         "Reads a motion file of either kind, written by `qmotion interpolate`, `qmotion "
         "qspline` or `save`, as a Motion.");
+  m.def(
+      "loads",
+      [](const std::string& text, const std::string& name) { return from_text(text, name); },
+      py::arg("text"), py::arg("name") = "<text>",
+      "A Motion from a motion file's text (Motion.dumps), refusals naming `name`.");
 
   m.def(
       "interpolate",
@@ -283,7 +317,10 @@ void bind_motion(py::module_& m) {
           o.tension = os.str();
         }
         const QSplineResult r = qspline(to_poses(poses, units), o);
-        return PyMotion{r.motion, std::nullopt, r.document, {}};
+        // Built from its document, as load() and unpickling build it: the same motion bit
+        // for bit whichever way it arrives (a KKS spline's solve leaves its controls a last
+        // bit from unit, which the document's reading normalizes).
+        return PyMotion{io::qspline_motion(r.document, "qspline()"), std::nullopt, r.document, {}};
       },
       py::arg("poses"), py::arg("scheme"), py::arg("tension") = py::none(), py::arg("param") = "",
       py::arg("units") = "mm",

@@ -5,7 +5,9 @@
 #   `qmotion view`, and Node.js with npm (Debian's, unless a node is already on PATH) for
 #   three.js, which npm ci installs into render/viewer from its lock file.
 #   --test  also installs what the test suite needs (GoogleTest, Google Benchmark,
-#           clang-format, pytest for the Python module, FreeCAD for the interop test, and
+#           clang-format, pytest for the Python module, pip, venv, setuptools and wheel for
+#           its `pip install .` test, Dask's distributed for its batch
+#           example, FreeCAD for the interop test, and
 #           clang with libclang-rt-14-dev for scripts/test-sanitized.sh: sanitizers, libFuzzer;
 #           linuxcnc-uspace for its rs274 G-code interpreter; Blender for the glTF test, and
 #           Chromium for the viewer's test; OpenVDB for the swept-volume peer benchmark; then
@@ -24,7 +26,7 @@ packages=(
 )
 command -v npm >/dev/null || packages+=(nodejs npm)
 if [[ "${1:-}" == "--test" ]]; then
-  packages+=(googletest libgtest-dev libgmock-dev libbenchmark-dev clang-format git python3 python3-pytest freecad-python3
+  packages+=(googletest libgtest-dev libgmock-dev libbenchmark-dev clang-format git python3 python3-pytest python3-distributed python3-pip python3-venv python3-setuptools python3-wheel freecad-python3
     clang libclang-rt-14-dev linuxcnc-uspace time blender chromium libopenvdb-dev)
 fi
 

@@ -237,21 +237,35 @@ TriangleMesh read_ply(const std::string& path, const std::string& text) {
   return m;
 }
 
-Body mesh_body(const std::string& path) {
+Body mesh_file_body(const std::string& path) {
   const std::string text = read_text_file(path);
   const std::string e = lower_extension(path);
-  Body b;
-  b.kind = Body::Kind::mesh;
-  b.spec = path;
-  b.mesh = e == ".stl"   ? read_stl(path, text)
-           : e == ".obj" ? read_obj(path, text)
-                         : read_ply(path, text);
-  require_closed_oriented(b.mesh, path);
-  sweep::index_mesh(b);  // closed and oriented: the pseudonormals' sign holds
-  return b;
+  return mesh_body(e == ".stl"   ? read_stl(path, text)
+                   : e == ".obj" ? read_obj(path, text)
+                                 : read_ply(path, text),
+                   path);
 }
 
 }  // namespace
+
+Body mesh_body(sweep::TriangleMesh mesh, const std::string& label) {
+  const int n = static_cast<int>(mesh.vertices.size());
+  for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
+    if (!mesh.vertices[i].allFinite())
+      bad(label, "vertex " + std::to_string(i) + " (counted from 0) is not finite");
+  for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
+    for (int v : mesh.triangles[i])
+      if (v < 0 || v >= n)
+        bad(label, "triangle " + std::to_string(i) + " (counted from 0) names vertex " +
+                       std::to_string(v) + ", outside 0.." + std::to_string(n - 1));
+  Body b;
+  b.kind = Body::Kind::mesh;
+  b.spec = label;
+  b.mesh = std::move(mesh);
+  require_closed_oriented(b.mesh, label);
+  sweep::index_mesh(b);  // closed and oriented: the pseudonormals' sign holds
+  return b;
+}
 
 void require_closed_oriented(const TriangleMesh& m, const std::string& label) {
   if (m.triangles.empty()) bad(label, "the mesh has no triangles");
@@ -273,6 +287,17 @@ void require_closed_oriented(const TriangleMesh& m, const std::string& label) {
       bad(label, "the mesh is open: the edge from vertex " + std::to_string(e.first) +
                      " to vertex " + std::to_string(e.second) +
                      " (counted from 0) bounds one triangle only");
+  // Outward: the signed volume (divergence theorem, sum of det(v0, v1, v2) / 6) is positive
+  // for counter-clockwise triangles seen from outside, negative for an inside-out mesh.
+  double six_volume = 0;
+  for (const auto& t : m.triangles)
+    six_volume += m.vertices[static_cast<std::size_t>(t[0])].dot(
+        m.vertices[static_cast<std::size_t>(t[1])].cross(
+            m.vertices[static_cast<std::size_t>(t[2])]));
+  if (!(six_volume > 0))
+    bad(label, "the mesh is inside out or flat: its signed volume is " +
+                   kernel::detail::format_double(six_volume / 6) +
+                   " (triangles must turn counter-clockwise seen from outside; reverse them)");
 }
 
 Body read_body(const std::string& spec) {
@@ -283,7 +308,7 @@ Body read_body(const std::string& spec) {
   b.spec = spec;
   const std::string e = lower_extension(spec);
   if (colon == std::string::npos && (e == ".stl" || e == ".obj" || e == ".ply"))
-    return mesh_body(spec);
+    return mesh_file_body(spec);
   // The shorthands: a name, then the sizes in the order the form gives them.
   struct Form {
     const char *name, *usage;

@@ -61,6 +61,14 @@ sweep::Profile<double> wire_profile(std::vector<sweep::NurbsCurve<double>> edges
 
 }  // namespace
 
+sweep::Profile<double> profile_from_json(const nlohmann::json& doc, const std::string& where) {
+  if (!doc.is_array()) return sweep::single_edge(curve_from_json(doc, where));
+  std::vector<sweep::NurbsCurve<double>> edges;
+  for (std::size_t k = 0; k < doc.size(); ++k)
+    edges.push_back(curve_from_json(doc[k], where + ": curve " + std::to_string(k + 1)));
+  return wire_profile(std::move(edges), where);
+}
+
 sweep::Profile<double> read_profile(const std::string& spec, const std::string& units) {
   const std::string where = "--profile " + spec;
   if (spec.rfind("polyline:", 0) == 0) {
@@ -110,14 +118,7 @@ sweep::Profile<double> read_profile(const std::string& spec, const std::string& 
   if (ext == ".step" || ext == ".stp" || ext == ".igs" || ext == ".iges") {
     return wire_profile(read_cad(spec, /*want_surface=*/false, units).wire, spec);
   }
-  if (ext == ".json") {
-    const nlohmann::json doc = read_json_file(spec);
-    if (!doc.is_array()) return sweep::single_edge(curve_from_json(doc, spec));
-    std::vector<sweep::NurbsCurve<double>> edges;
-    for (std::size_t k = 0; k < doc.size(); ++k)
-      edges.push_back(curve_from_json(doc[k], spec + ": curve " + std::to_string(k + 1)));
-    return wire_profile(std::move(edges), spec);
-  }
+  if (ext == ".json") return profile_from_json(read_json_file(spec), spec);
   throw Error(
       Errc::invalid_input,
       where +

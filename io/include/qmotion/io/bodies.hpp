@@ -13,8 +13,15 @@ namespace qmotion::io {
 /// mesh that is empty, open, non-manifold or inconsistently oriented.
 sweep::Body read_body(const std::string& spec);
 
+/// A body from a triangle mesh already in memory (the Python module's arrays), named
+/// `label` in messages, indexed for distance queries. Errc::invalid_input for a vertex that
+/// is not finite, a triangle naming a vertex that does not exist, and the meshes
+/// require_closed_oriented refuses.
+sweep::Body mesh_body(sweep::TriangleMesh mesh, const std::string& label);
+
 /// Refuses (Errc::invalid_input naming `label`) a mesh that is not closed, 2-manifold and
-/// consistently oriented: every directed edge must occur once and its reverse once.
+/// consistently oriented (every directed edge must occur once and its reverse once), or
+/// that is oriented inward or encloses no volume (its signed volume is not positive).
 void require_closed_oriented(const sweep::TriangleMesh& m, const std::string& label);
 
 }  // namespace qmotion::io

@@ -1,5 +1,6 @@
 // <qmotion/io/profiles.hpp>
 #pragma once
+#include <nlohmann/json_fwd.hpp>
 #include <qmotion/sweep/nurbs.hpp>
 #include <qmotion/sweep/profiles.hpp>
 #include <string>
@@ -16,5 +17,9 @@ namespace qmotion::io {
 /// converted to `units`. Consecutive edges must join (within 1e-9 of the profile's size).
 /// Throws Errc::invalid_input naming the profile and what is wrong.
 sweep::Profile<double> read_profile(const std::string& spec, const std::string& units = "mm");
+
+/// The profile of a JSON document as a .json profile file holds it: one nurbs_curve, or an
+/// array of them in order (a wire whose edges must join). Errc::invalid_input naming `where`.
+sweep::Profile<double> profile_from_json(const nlohmann::json& doc, const std::string& where);
 
 }  // namespace qmotion::io
