@@ -2,6 +2,7 @@
 clients"): fail, saying what to install and which CMake option turns the test off, or skip
 (exit 77) when the build says -DQMOTION_REAL_CLIENTS=OFF."""
 import os
+import shutil
 
 
 def missing(what, install):
@@ -12,3 +13,15 @@ def missing(what, install):
     print("%s is missing: install %s (scripts/install-deps.sh --test), or configure with "
           "-DQMOTION_REAL_CLIENTS=OFF to turn this test off" % (what, install))
     return 1
+
+
+def freecad():
+    """FreeCAD's freecadcmd (QMOTION_FREECADCMD names another), or the exit status when it
+    is missing or the build turned real clients off (an int)."""
+    if os.environ.get("QMOTION_REAL_CLIENTS") == "OFF":
+        print("skipped: configured with -DQMOTION_REAL_CLIENTS=OFF, so FreeCAD is not run")
+        return 77
+    exe = os.environ.get("QMOTION_FREECADCMD") or shutil.which("freecadcmd")
+    if not exe or not os.path.exists(exe):
+        return missing("freecadcmd (FreeCAD)", "freecad-python3")
+    return exe

@@ -27,21 +27,17 @@ skip (QMOTION_REAL_CLIENTS=OFF in the environment).
 """
 import json
 import os
-import shutil
 import subprocess
 import sys
+
+import clients
 
 
 def main():
     qmotion, data, work = sys.argv[1:4]
-    if os.environ.get("QMOTION_REAL_CLIENTS") == "OFF":
-        print("skipped: configured with -DQMOTION_REAL_CLIENTS=OFF, so FreeCAD is not run")
-        return 77
-    freecad = os.environ.get("QMOTION_FREECADCMD") or shutil.which("freecadcmd")
-    if not freecad or not os.path.exists(freecad):
-        print("freecadcmd not found: FreeCAD is required (install freecad-python3: "
-              "scripts/install-deps.sh --test), or configure with -DQMOTION_REAL_CLIENTS=OFF")
-        return 1
+    freecad = clients.freecad()
+    if isinstance(freecad, int):
+        return freecad
     os.makedirs(work, exist_ok=True)
     motion = os.path.join(work, "motion.json")
     subprocess.run([qmotion, "interpolate", os.path.join(data, "poses/five_positions.json"), "-o", motion], check=True)
