@@ -30,6 +30,11 @@ Command add_view(CLI::App& app) {
   sub->add_option("--body", o->options.body,
                   "A body to move: sphere:r, box:a,b,c, cylinder:r,h, cutter:flat|ball,D,L, "
                   "cutter:bull,D,rc,L, or an .stl/.obj/.ply mesh");
+  sub->add_flag("--volume", o->options.volume,
+                "Also draw the body's swept volume: the certified enclosing mesh of `volume` "
+                "(needs --body)");
+  sub->add_option("--body-tol", o->options.volume_tol,
+                  "The swept volume's tolerance (motion units; default 1e-2 of its diagonal)");
   sub->add_option("--point", o->points,
                   "A point x,y,z of the moving space whose trajectory is drawn (repeatable; "
                   "default: the origin)");

@@ -65,7 +65,8 @@ void bind_geometry_jobs(py::module_& m) {
       py::arg("units") = "",
       "The kinematic surface M(t) x(v) of each profile edge: a list of NurbsSurface, u = t, v "
       "the edge's parameter; poles M_i X_j for a Q-motion (exact, no fitting), fitted within "
-      "tol at degree max_degree (default 5) for a quaternion spline. profile: a NurbsCurve, or a "
+      "tol at degree max_degree (default 5) for a quaternion spline. profile: a NurbsCurve; a "
+      "nurbs_curve dict (docs/formats.md) or a list of them in order (a wire); or a "
       "spec as for the CLI: a .json/.step/.igs file, 'segment:x0,y0,z0:x1,y1,z1', "
       "'polyline:x,y,z:...', 'rect:w,h', 'circle:r', 'arc:r,a0,a1'.");
 
@@ -192,20 +193,24 @@ void bind_output_jobs(py::module_& m) {
   m.def(
       "view",
       [](const PyMotion& p, const std::string& path, const std::string& profile,
-         const std::string& body, const py::object& points) {
+         const std::string& body, const py::object& points, bool volume,
+         const py::object& body_tol) {
         ViewOptions o;
         o.output = path;
         o.profile = profile;
         o.body = body;
+        o.volume = volume;
+        if (!body_tol.is_none()) o.volume_tol = body_tol.cast<double>();
         if (!points.is_none())
           for (const auto& x : points) o.points.push_back(vec3(x, "points"));
         return to_python(view(p.motion, o).report());
       },
       py::arg("motion"), py::arg("path"), py::arg("profile") = "", py::arg("body") = "",
-      py::arg("points") = py::none(),
+      py::arg("points") = py::none(), py::arg("volume") = false, py::arg("body_tol") = py::none(),
       "`qmotion view`: one self-contained HTML page (no network, no server) at path that "
       "animates the motion (either kind) with its key poses, the trajectories of points "
-      "(default the origin), the exact sweep of profile and the moving body; the kernel runs "
+      "(default the origin), the exact sweep of profile and the moving body (volume=True: "
+      "and its certified swept volume at body_tol, as `view --volume`); the kernel runs "
       "in the page (WebAssembly) and interpolates again when a pose is edited. Returns the "
       "report dict: bytes, wasm_bytes, poses, editable, method, ...");
   m.def(

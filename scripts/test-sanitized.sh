@@ -7,6 +7,9 @@
 # configures, builds and passes its tests, without a third build in CI's time. The exact
 # modes (--exact, check --exact) and the mesh self-intersection check are CGAL's; the
 # Release tree tests them, and this one tests that they are refused by name.
+# It is also the build without the viewer page (QMOTION_VIEWER=OFF, as on a machine without
+# emscripten or npm): its tests pass, and `view` is refused saying how to get the page
+# (cli.view_without_viewer).
 # Built only for what runs here: no Python module, no benchmarks, no examples.
 # Not run here: the Python module and FreeCAD (an instrumented library cannot be loaded into
 # an uninstrumented interpreter), the examples (built and run in the Release tree), the
@@ -31,6 +34,7 @@ if [[ -f build-sanitized/CMakeCache.txt ]] &&
 fi
 cmake -S . -B build-sanitized -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DQMOTION_SANITIZE=ON -DQMOTION_FUZZ=ON -DQMOTION_BUILD_PYTHON=OFF -DQMOTION_WITH_CGAL=OFF \
+  -DQMOTION_VIEWER=OFF \
   -DQMOTION_BUILD_BENCHMARKS=OFF -DQMOTION_BUILD_EXAMPLES=OFF -DQMOTION_WARNINGS_AS_ERRORS=ON \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -gline-tables-only -DNDEBUG" "${launcher[@]}" "$@"
 cmake --build build-sanitized -j "$(nproc)"

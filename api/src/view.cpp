@@ -1,6 +1,7 @@
 // api/src/view.cpp: `qmotion view` (docs/guide/view.md).
 #include <filesystem>
 #include <qmotion/api/view.hpp>
+#include <qmotion/api/volume.hpp>
 #include <qmotion/io/atomic_file.hpp>
 #include <qmotion/io/bodies.hpp>
 #include <qmotion/io/nurbs_json.hpp>
@@ -9,6 +10,8 @@
 #include <qmotion/render/view.hpp>
 #include <qmotion/sweep/body.hpp>
 #include <qmotion/sweep/trajectory.hpp>
+
+#include "volume_detail.hpp"
 
 namespace qmotion {
 namespace {
@@ -109,7 +112,30 @@ json View::report() const {
           {"method", method},
           {"profile_edges", profile_edges},
           {"body_triangles", body_triangles},
-          {"points", points}};
+          {"points", points},
+          {"volume_triangles", volume_triangles},
+          {"volume_distance_bound", volume_distance_bound}};
+}
+
+/// The body's swept volume as the page draws it: positions, indices and its certificate.
+json volume_data(const Motion& motion, const ViewOptions& o) {
+  if (o.body.empty())
+    throw Error(Errc::invalid_input, "--volume: the swept volume is the body's: give --body");
+  if (o.volume_tol && (!(*o.volume_tol > 0) || !std::isfinite(*o.volume_tol)))
+    throw Error(Errc::invalid_input, "--body-tol: the tolerance must be a positive length, got " +
+                                         kernel::detail::format_double(*o.volume_tol));
+  const sweep::Body body = io::read_body(o.body);
+  sweep::validate(body);
+  const SweptVolume v = swept_volume(
+      motion, body,
+      o.volume_tol ? *o.volume_tol : 1e-2 * detail::sampled_box(motion, body).diagonal().norm());
+  json positions = json::array(), indices = json::array();
+  for (const auto& p : v.vertices) positions.insert(positions.end(), {p.x(), p.y(), p.z()});
+  for (const auto& t : v.triangles) indices.insert(indices.end(), {t[0], t[1], t[2]});
+  return {{"positions", std::move(positions)},
+          {"indices", std::move(indices)},
+          {"distance_bound", v.distance_bound},
+          {"tolerance", v.tolerance}};
 }
 
 json view_data(const Motion& motion, const ViewOptions& o) {
@@ -158,6 +184,7 @@ json view_data(const Motion& motion, const ViewOptions& o) {
     if (!p.allFinite()) throw Error(Errc::invalid_input, "--point: expected finite x,y,z");
     data["points"].push_back(io::point_json(p));
   }
+  if (o.volume) data["volume"] = volume_data(motion, o);
   return data;
 }
 
@@ -181,6 +208,10 @@ View view(const Motion& motion, const ViewOptions& o) {
   v.profile_edges = data["profile"].is_null() ? 0 : data["profile"].size();
   v.body_triangles = data["body"].is_null() ? 0 : data["body"]["indices"].size() / 3;
   v.points = o.points.size();
+  if (data.contains("volume")) {
+    v.volume_triangles = data["volume"]["indices"].size() / 3;
+    v.volume_distance_bound = data["volume"]["distance_bound"].get<double>();
+  }
   return v;
 }
 

@@ -47,7 +47,9 @@ std::string viewer_page(const std::string& title, const std::string& summary,
 #endif
   if (page.empty())
     throw Error(Errc::invalid_input,
-                "view: this build has no viewer page (configured with -DQMOTION_VIEWER=OFF)");
+                "view: this build has no viewer page: building it needs Debian's emscripten and "
+                "npm's three.js (scripts/install-deps.sh installs both), then configure again "
+                "(QMOTION_VIEWER=AUTO or ON)");
   // The data first: the title and summary could contain a mark's text.
   replace_once(page, "@QMOTION_DATA@", script_json(data));
   replace_once(page, "@QMOTION_SUMMARY@", detail::escape_xml(summary));

@@ -198,6 +198,47 @@ val interpolate(val poses_js, val method) {
   });
 }
 
+/// The motion the page holds, for its "Save motion" (docs/guide/view.md): the fields of a
+/// motion file (docs/formats.md) with every array flat (8 numbers a control point of a
+/// Q-motion; 4 a key or control quaternion and 3 a position of a spline), the numbers as the
+/// kernel holds them. The page shapes the arrays and adds the units.
+val motion_document() {
+  return guarded([&] {
+    using namespace qmotion::kernel;
+    require_motion();
+    val doc = val::object();
+    doc.set("param_range", float64_array({start(), end()}));
+    const auto flat = [](const auto& list, int n) {
+      std::vector<double> out;
+      for (const auto& x : list)
+        for (int k = 0; k < n; ++k) out.push_back(x[k]);
+      return float64_array(out);
+    };
+    if (rational) {
+      doc.set("type", std::string("q-motion"));
+      doc.set("basis", std::string(rational->curve.basis == Basis::bezier ? "bezier" : "bspline"));
+      doc.set("degree", rational->degree());
+      doc.set("knots", float64_array(rational->curve.curve.knots()));
+      doc.set("control_points", flat(rational->curve.curve.ctrl(), 8));
+      return doc;
+    }
+    const auto quats = [](const std::vector<Quaternion<double>>& list) {
+      std::vector<double> out;
+      for (const auto& q : list) out.insert(out.end(), {q.w(), q.x(), q.y(), q.z()});
+      return float64_array(out);
+    };
+    doc.set("type", std::string("quaternion-spline"));
+    doc.set("scheme", to_string(spline->scheme));
+    doc.set("knots", float64_array(spline->knots));
+    doc.set("keys", quats(spline->keys));
+    doc.set("positions", flat(spline->positions, 3));
+    doc.set("tension", float64_array(spline->tension));
+    doc.set("control_quaternions", quats(spline->ctrl));
+    doc.set("control_positions", flat(spline->pctrl, 3));
+    return doc;
+  });
+}
+
 /// The pose at t: [x, y, z, w, qx, qy, qz] with w >= 0, as `qmotion eval` gives it.
 val evaluate(double t) {
   return guarded([&] {
@@ -294,6 +335,7 @@ EMSCRIPTEN_BINDINGS(qmotion_kernel) {
   emscripten::function("loadSpline", &load_spline);
   emscripten::function("interpolate", &interpolate);
   emscripten::function("evaluate", &evaluate);
+  emscripten::function("motionDocument", &motion_document);
   emscripten::function("trajectory", &trajectory);
   emscripten::function("sweepEdge", &sweep_edge);
   emscripten::function("curvePoints", &curve_points);

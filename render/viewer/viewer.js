@@ -161,13 +161,22 @@ function drawSweep() {
 // The moving object: the body, else the profile, else a frame.
 const mover = new THREE.Group();
 scene.add(mover);
-if (data.body) {
+// A triangle mesh as the data carry it: positions (3 numbers a vertex) and indices.
+function meshOf(m, material) {
   const geometry = new THREE.BufferGeometry();
-  geometry.setAttribute("position", new THREE.BufferAttribute(new Float32Array(data.body.positions), 3));
-  geometry.setIndex(data.body.indices);
+  geometry.setAttribute("position", new THREE.BufferAttribute(new Float32Array(m.positions), 3));
+  geometry.setIndex(m.indices);
   geometry.computeVertexNormals();
-  mover.add(new THREE.Mesh(geometry, new THREE.MeshStandardMaterial({ color: 0xe08a3c, flatShading: true })));
+  return new THREE.Mesh(geometry, material);
 }
+if (data.body)
+  mover.add(meshOf(data.body, new THREE.MeshStandardMaterial({ color: 0xe08a3c, flatShading: true })));
+// The body's swept volume (view --volume): the certified enclosing mesh, fixed, translucent.
+const volume = new THREE.Group();
+scene.add(volume);
+if (data.volume)
+  volume.add(meshOf(data.volume, new THREE.MeshStandardMaterial(
+    { color: 0x4a7fb5, transparent: true, opacity: 0.35, depthWrite: false, side: THREE.DoubleSide })));
 if (data.profile)
   for (const edge of data.profile) {
     const n = 64, points = [];
@@ -271,6 +280,43 @@ poses.forEach((p, i) => {
 });
 if (!data.method) say(`${data.name}: the file does not record how it was made, so its poses are shown, not edited`);
 
+// Saving: the poses as edited, as a pose file, and the motion the page holds, as a motion
+// file (docs/formats.md); `qmotion interpolate` and every other command read them back.
+function posesDocument() {
+  return { units: data.units, poses: poses.map((p) => Object.assign(p.t == null ? {} : { t: p.t },
+    { position: [...p.position], rotation: { quaternion: [...p.quaternion] } })) };
+}
+function rows(flat, n) {
+  const out = [];
+  for (let i = 0; i + n <= flat.length; i += n) out.push(Array.from(flat.subarray(i, i + n)));
+  return out;
+}
+function motionDocument() {
+  const m = kernel.motionDocument();
+  if (m.error) throw new Error(m.error);
+  const doc = { type: m.type, units: data.units, param_range: Array.from(m.param_range),
+                knots: Array.from(m.knots) };
+  if (m.type === "q-motion")
+    return Object.assign(doc, { basis: m.basis, degree: m.degree, control_points: rows(m.control_points, 8) });
+  Object.assign(doc, { scheme: m.scheme, keys: rows(m.keys, 4), positions: rows(m.positions, 3) });
+  if (m.scheme === "quintic") doc.tension = Array.from(m.tension);
+  if (m.scheme === "kks")
+    Object.assign(doc, { control_quaternions: rows(m.control_quaternions, 4),
+                         control_positions: rows(m.control_positions, 3) });
+  return doc;
+}
+function download(name, doc) {
+  const url = URL.createObjectURL(new Blob([JSON.stringify(doc, null, 1) + "\n"], { type: "application/json" }));
+  const a = Object.assign(document.createElement("a"), { href: url, download: name });
+  document.body.appendChild(a);
+  a.click();
+  a.remove();
+  setTimeout(() => URL.revokeObjectURL(url), 10000);
+}
+const stem = data.name.replace(/^.*[\\/]/, "").replace(/\.[^.]*$/, "");
+document.getElementById("save-poses").addEventListener("click", () => download(`${stem}-poses.json`, posesDocument()));
+document.getElementById("save-motion").addEventListener("click", () => download(`${stem}-motion.json`, motionDocument()));
+
 function resize() {
   const w = canvas.clientWidth, h = canvas.clientHeight;
   renderer.setSize(w, h, false);
@@ -300,6 +346,15 @@ window.qmotion = {
   range: () => [shown.a, shown.b],
   poses: () => copyPoses(poses),
   method: data.method,
+  posesDocument,
+  motionDocument,
+  // The swept volume as drawn: its triangles, and its vertices as the GPU holds them.
+  drawnVolume: () => volume.children.map((m) => ({
+    triangles: m.geometry.index.count / 3, positions: Array.from(m.geometry.getAttribute("position").array),
+  })),
+  // Where the camera looks from (unit vector from the target) and its up direction.
+  camera: () => ({ from: camera.position.clone().sub(controls.target).normalize().toArray(),
+                   up: camera.up.toArray(), zoom: camera.zoom }),
   kernel, // the WebAssembly kernel itself (render/viewer/kernel_wasm.cpp)
   // The trajectories as drawn (3 numbers per vertex) and the points they trace.
   drawnPaths: () => layers.paths.children.map((line, i) => ({

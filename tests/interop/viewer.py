@@ -13,7 +13,13 @@ tests/interop) with every request outside the file refused. Then checks:
   50 parameters equals `qmotion interpolate` (or `qmotion qspline --param given`) on the
   edited poses (with the method the file records) to 1e-12 relative, and differs from the motion before the edit; the trajectory the
   page draws lies on the native one (32-bit floats);
-- the other poses are unchanged.
+- the other poses are unchanged;
+- the page's Save buttons give a pose file from which `qmotion interpolate` (with the
+  recorded method) makes the edited motion, and a motion file that `qmotion eval` finds
+  equal to the page's motion, both to 1e-12 relative;
+- the view buttons look from +z, -y and +x, and dragging the canvas turns the camera;
+- with --volume (the B-spline case), the page draws `qmotion volume`'s mesh at the same
+  tolerance (vertex for vertex, as 32-bit floats), and no volume otherwise.
 A missing Chromium, Node.js or puppeteer-core fails, naming what to install and the CMake
 option that turns the test off; with QMOTION_REAL_CLIENTS=OFF it exits 77 (skip).
 Usage: viewer.py QMOTION DATA WORK [--screenshot PNG]
@@ -74,18 +80,68 @@ def compare(what, page_samples, qmotion, motion, scale, failures):
     return worst
 
 
-def case(qmotion, node, chromium, here, work, name, poses, make, edits, screenshot):
+def camera_failures(name, rep):
+    """Each view button looks from its direction; dragging the canvas turns the camera."""
+    want = {"top": [0, 0, 1], "front": [0, -1, 0], "side": [1, 0, 0]}
+    failures = []
+    for view, d in want.items():
+        got = rep["views"][view]["from"]
+        # three.js's OrbitControls keeps the camera 1e-6 rad off the poles (its makeSafe), so
+        # "top" may look from 1e-6 beside +z once the animation loop has run the controls.
+        if math.dist(got, d) > 1e-5:
+            failures.append("%s: the %s button looks from %s, not %s" % (name, view, got, d))
+    iso, orbited = rep["views"]["iso"]["from"], rep["orbited"]["from"]
+    turned = math.degrees(math.acos(max(-1.0, min(1.0, sum(a * b for a, b in zip(iso, orbited))))))
+    if not turned > 5:
+        failures.append("%s: dragging the canvas turned the camera by %.3g degrees" % (name, turned))
+    return failures
+
+
+def read_obj(path):
+    vertices, triangles = [], 0
+    for line in open(path):
+        if line.startswith("v "):
+            vertices.append([float(x) for x in line.split()[1:4]])
+        elif line.startswith("f "):
+            triangles += 1
+    return vertices, triangles
+
+
+def volume_failures(name, qmotion, motion, work, tol, report, drawn):
+    """The page draws `qmotion volume`'s mesh at the same tolerance (as 32-bit floats)."""
+    obj = os.path.join(work, name + "-volume.obj")
+    run([qmotion, "volume", motion, "--body", "cutter:ball,4,10", "--tol", repr(tol), "-o", obj])
+    vertices, triangles = read_obj(obj)
+    if len(drawn) != 1 or drawn[0]["triangles"] != triangles != 0 or report["volume_triangles"] != triangles:
+        return ["%s: the page draws %s volume triangles, `view` reports %s, `volume` writes %d" %
+                (name, [d["triangles"] for d in drawn], report["volume_triangles"], triangles)]
+    xs = drawn[0]["positions"]
+    scale = max(max(abs(c) for c in v) for v in vertices)
+    worst = max(math.dist(xs[3 * i:3 * i + 3], v) for i, v in enumerate(vertices)) / scale
+    if not worst <= 1e-6 or not 0 < report["volume_distance_bound"] <= tol:
+        return ["%s: the drawn volume is %.3g (relative) off `volume`'s mesh, bound %s" %
+                (name, worst, report["volume_distance_bound"])]
+    return []
+
+
+def case(qmotion, node, chromium, here, work, name, poses, make, edits, screenshot,
+         volume_tol=None):
     """make: the command and options that make the motion from the poses."""
     failures = []
     motion = os.path.join(work, name + ".json")
     page = os.path.join(work, name + ".html")
     run([qmotion, make[0], poses, "-o", motion] + make[1:])
     point = [3.0, -2.0, 1.5]
-    run([qmotion, "view", motion, "-o", page, "--profile", "rect:4,2", "--body",
-         "cutter:ball,4,10", "--point", "0,0,0", "--point", ",".join(map(repr, point))])
+    volume = ["--volume", "--body-tol", repr(volume_tol)] if volume_tol else []
+    view_report = json.loads(run([qmotion, "view", motion, "-o", page, "--profile", "rect:4,2", "--body",
+                                  "cutter:ball,4,10", "--point", "0,0,0", "--point",
+                                  ",".join(map(repr, point))] + volume))
     edits_path = os.path.join(work, name + "-edits.json")
+    downloads = os.path.join(work, name + "-downloads")
+    shutil.rmtree(downloads, ignore_errors=True)
+    os.makedirs(downloads)
     with open(edits_path, "w") as f:
-        json.dump({"samples": SAMPLES, "edits": edits}, f)
+        json.dump({"samples": SAMPLES, "edits": edits, "downloads": downloads}, f)
     out = os.path.join(work, name + "-report.json")
     cmd = [node, os.path.join(here, "viewer_check.mjs"), chromium, page, edits_path, out]
     if screenshot:
@@ -132,6 +188,23 @@ def case(qmotion, node, chromium, here, work, name, poses, make, edits, screensh
         if field == "position" and rep["poses_after"][int(i)]["position"][int(k)] != e["value"]:
             failures.append("%s: pose %s's position is not the value typed" % (name, i))
 
+    # The Save buttons' files: the pose file, read back by the native interpolate with the
+    # recorded method, makes the page's edited motion; the motion file is that motion.
+    saved = rep.get("downloads", {})
+    if set(saved) != {"poses", "motion"}:
+        failures.append("%s: the Save buttons gave %s, not a pose file and a motion file" % (name, saved))
+    else:
+        saved_motion = os.path.join(work, name + "-from-saved-poses.json")
+        run([qmotion, again[0], saved["poses"], "-o", saved_motion] + again[1:])
+        compare(name + " from the saved pose file", rep["after"], qmotion, saved_motion, scale, failures)
+        compare(name + " as the saved motion file", rep["after"], qmotion, saved["motion"], scale, failures)
+    failures += camera_failures(name, rep)
+    if volume_tol:
+        failures += volume_failures(name, qmotion, motion, work, volume_tol, view_report,
+                                    rep["drawn_volume"])
+    elif rep["drawn_volume"]:
+        failures.append("%s: a swept volume is drawn though none was asked for" % name)
+
     # The drawn trajectories lie on the native ones (the page draws 32-bit floats).
     drawn_worst = 0.0
     for path in rep["drawn_paths"]:
@@ -175,7 +248,7 @@ def main():
     failures = case(qmotion, node, chromium, here, work, "bspline",
                     os.path.join(data, "helix_10.json"), ["interpolate"],
                     [{"id": "pose-3-position-0", "value": 41.5},
-                     {"id": "pose-6-rotation-2", "value": 35}], screenshot)
+                     {"id": "pose-6-rotation-2", "value": 35}], screenshot, volume_tol=1.0)
     failures += case(qmotion, node, chromium, here, work, "bezier", five,
                      ["interpolate", "--rotation", "affine", "--translation", "minimal"],
                      [{"id": "pose-2-position-2", "value": 12.25},

@@ -3,13 +3,16 @@
 // checks: console errors, requests that left the file, whether the canvas shows anything,
 // the page's evaluations, and what its own pose controls do.
 // Usage: node viewer_check.mjs CHROMIUM PAGE.html EDITS.json OUT.json [SCREENSHOT.png]
-// EDITS.json: {"samples": n, "edits": [{"id": "pose-3-position-0", "value": 41.5}, ...]}.
+// EDITS.json: {"samples": n, "edits": [{"id": "pose-3-position-0", "value": 41.5}, ...],
+// "downloads": DIR}: after the edits the page's Save buttons are clicked and their files
+// land in DIR; the view buttons are clicked and the canvas dragged (the orbit), and where
+// the camera looks from is reported after each.
 import fs from "node:fs";
 import { pathToFileURL } from "node:url";
 import puppeteer from "puppeteer-core";
 
 const [chromium, pagePath, editsPath, outPath, screenshotPath] = process.argv.slice(2);
-const { samples, edits } = JSON.parse(fs.readFileSync(editsPath, "utf8"));
+const { samples, edits, downloads } = JSON.parse(fs.readFileSync(editsPath, "utf8"));
 const browser = await puppeteer.launch({
   executablePath: chromium,
   headless: true,
@@ -90,6 +93,36 @@ try {
   report.poses_after = await page.evaluate(() => window.qmotion.poses());
   report.after = await sample();
   report.drawn_paths = await page.evaluate(() => window.qmotion.drawnPaths());
+  report.drawn_volume = await page.evaluate(() => window.qmotion.drawnVolume());
+
+  // The Save buttons, clicked: their files, as Chromium downloads them.
+  const cdp = await browser.target().createCDPSession();
+  await cdp.send("Browser.setDownloadBehavior", { behavior: "allow", downloadPath: downloads });
+  report.downloads = {};
+  for (const [id, key] of [["save-poses", "poses"], ["save-motion", "motion"]]) {
+    const before = new Set(fs.readdirSync(downloads));
+    await page.click(`#${id}`);
+    for (let i = 0; i < 100 && !report.downloads[key]; ++i) {
+      await new Promise((done) => setTimeout(done, 100));
+      const fresh = fs.readdirSync(downloads).filter((f) => !before.has(f) && f.endsWith(".json"));
+      if (fresh.length) report.downloads[key] = `${downloads}/${fresh[0]}`;
+    }
+  }
+
+  // The view buttons and the orbit: where the camera looks from after each.
+  const camera = () => page.evaluate(() => window.qmotion.camera());
+  report.views = {};
+  for (const name of ["top", "front", "side", "iso"]) {
+    await page.click(`#view-${name}`);
+    report.views[name] = await camera();
+  }
+  const [x, y, w, h] = box;
+  await page.mouse.move(x + w / 2, y + h / 2);
+  await page.mouse.down();
+  for (let i = 1; i <= 10; ++i) await page.mouse.move(x + w / 2 + 15 * i, y + h / 2 + 4 * i);
+  await page.mouse.up();
+  await page.evaluate(() => new Promise((done) => requestAnimationFrame(() => requestAnimationFrame(done))));
+  report.orbited = await camera();
 } catch (e) {
   report.failure = String(e.stack || e);
 } finally {

@@ -284,6 +284,18 @@ def test_view_is_the_clis(tmp_path):
     with pytest.raises(ValueError, match="view writes an .html page"):
         qmotion.view(m, str(tmp_path / "c.txt"))
     assert not (tmp_path / "c.txt").exists()
+    # With the swept volume: the CLI's report, the mesh `volume` makes at that tolerance.
+    ours = qmotion.view(m, str(tmp_path / "d.html"), body="sphere:1", volume=True, body_tol=1.0)
+    r = cli("view", motion, "--body", "sphere:1", "--volume", "--body-tol", "1", "-o", tmp_path / "e.html")
+    assert r.returncode == 0, r.stderr
+    theirs = json.loads(r.stdout)
+    assert {k: v for k, v in ours.items() if k not in skip} == {k: v for k, v in theirs.items() if k not in skip}
+    mesh = qmotion.swept_volume(m, "sphere:1", tol=1.0)
+    assert ours["volume_triangles"] == len(mesh["triangles"]) > 0
+    assert ours["volume_distance_bound"] == mesh["distance_bound"] <= 1.0
+    with pytest.raises(ValueError, match="give --body"):
+        qmotion.view(m, str(tmp_path / "f.html"), volume=True)
+    assert not (tmp_path / "f.html").exists()
 
 
 def test_volume_is_the_clis(tmp_path):

@@ -88,7 +88,8 @@ TEST(ViewData, AHandWrittenMotionIsShownNotEdited) {
   const json d = view_data(m, {});
   EXPECT_TRUE(d["method"].is_null());
   EXPECT_EQ(d["poses"].size(), 2u);  // a Bezier motion: its two ends
-  const View v = view(m, {test::scratch_path("view", "hand.html").string(), "", "", {}});
+  const View v =
+      view(m, {test::scratch_path("view", "hand.html").string(), "", "", {}, false, std::nullopt});
   EXPECT_FALSE(v.editable);
 }
 
@@ -142,7 +143,7 @@ TEST(ViewPage, TheDataCannotEndItsScript) {
 TEST(ViewPage, IsSelfContained) {
   if (!render::viewer_available()) GTEST_SKIP() << "built with -DQMOTION_VIEWER=OFF";
   const auto out = test::scratch_path("view", "five.html");
-  const View v = view(five({}).motion, {out.string(), "circle:3", "", {}});
+  const View v = view(five({}).motion, {out.string(), "circle:3", "", {}, false, std::nullopt});
   const std::string page = read(out);
   EXPECT_EQ(v.bytes, page.size());
   EXPECT_TRUE(v.editable);
@@ -164,22 +165,22 @@ TEST(ViewRefusals, LeaveNoFile) {
   std::filesystem::remove(out);
   EXPECT_TRUE(test::throws_error(
       [&] {
-        view(m, {out.string() + ".txt", "", "", {}});
+        view(m, {out.string() + ".txt", "", "", {}, false, std::nullopt});
       },
       Errc::invalid_input, {"view writes an .html page"}));
   EXPECT_TRUE(test::throws_error(
       [&] {
-        view(m, {out.string(), "circle:0", "", {}});
+        view(m, {out.string(), "circle:0", "", {}, false, std::nullopt});
       },
       Errc::invalid_input, {"circle:0"}));
   EXPECT_TRUE(test::throws_error(
       [&] {
-        view(m, {out.string(), "", "cutter:bull,4,3,10", {}});
+        view(m, {out.string(), "", "cutter:bull,4,3,10", {}, false, std::nullopt});
       },
       Errc::invalid_input, {"cutter:bull,4,3,10"}));
   EXPECT_TRUE(test::throws_error(
       [&] {
-        view(m, {out.string(), "", "", {Eigen::Vector3d(0, NAN, 0)}});
+        view(m, {out.string(), "", "", {Eigen::Vector3d(0, NAN, 0)}, false, std::nullopt});
       },
       Errc::invalid_input, {"--point"}));
   EXPECT_FALSE(std::filesystem::exists(out));
