@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """A missing real client fails its tests (QMOTION_REAL_CLIENTS=ON, the default).
 
-Runs the FreeCAD test with QMOTION_FREECADCMD naming no program, the rs274 tests of
+Runs the FreeCAD tests (the files, and the add-on's features) with QMOTION_FREECADCMD
+naming no program, the rs274 tests of
 cli_tests with QMOTION_RS274 naming no program, and the Blender and glTF validator tests
 with QMOTION_BLENDER and QMOTION_NODE naming no program, the viewer's with
 QMOTION_CHROMIUM naming no program, and LinuxCNC's simulator with QMOTION_LINUXCNC naming no
@@ -34,8 +35,10 @@ def main():
                         % (r.returncode, out[-3000:]))
     here = os.path.dirname(os.path.abspath(__file__))
     env = dict(os.environ, QMOTION_BLENDER=missing, QMOTION_NODE=missing,
-               QMOTION_CHROMIUM=missing, QMOTION_LINUXCNC=missing, QMOTION_REAL_CLIENTS="ON")
-    for script, args in (("blender_gltf.py", [qmotion, os.path.join(data, "helix_10.json"),
+               QMOTION_CHROMIUM=missing, QMOTION_LINUXCNC=missing, QMOTION_FREECADCMD=missing,
+               QMOTION_REAL_CLIENTS="ON")
+    for script, args in (("run_freecad_features.py", [work, os.path.join(data, "poses", "five_positions.json")]),
+                         ("blender_gltf.py", [qmotion, os.path.join(data, "helix_10.json"),
                                                "rational", "box:1,1,1", "0.01"]),
                          ("gltf_validator.py", [qmotion, data]),
                          ("viewer.py", [qmotion, data]),
