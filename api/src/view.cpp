@@ -121,14 +121,7 @@ json View::report() const {
 json volume_data(const Motion& motion, const ViewOptions& o) {
   if (o.body.empty())
     throw Error(Errc::invalid_input, "--volume: the swept volume is the body's: give --body");
-  if (o.volume_tol && (!(*o.volume_tol > 0) || !std::isfinite(*o.volume_tol)))
-    throw Error(Errc::invalid_input, "--body-tol: the tolerance must be a positive length, got " +
-                                         kernel::detail::format_double(*o.volume_tol));
-  const sweep::Body body = io::read_body(o.body);
-  sweep::validate(body);
-  const SweptVolume v = swept_volume(
-      motion, body,
-      o.volume_tol ? *o.volume_tol : 1e-2 * detail::sampled_box(motion, body).diagonal().norm());
+  const SweptVolume v = detail::preview_volume(motion, o.body, o.volume_tol, "--body-tol", nullptr);
   json positions = json::array(), indices = json::array();
   for (const auto& p : v.vertices) positions.insert(positions.end(), {p.x(), p.y(), p.z()});
   for (const auto& t : v.triangles) indices.insert(indices.end(), {t[0], t[1], t[2]});

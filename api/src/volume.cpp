@@ -21,15 +21,25 @@
 
 namespace qmotion {
 
-render::RenderResult render_volume(const Motion& motion, render::RenderOptions options,
-                                   const std::string& body_spec, std::optional<double> tol) {
-  const sweep::Body body = io::read_body(body_spec);
+SweptVolume detail::preview_volume(const Motion& motion, const std::string& body_spec,
+                                   std::optional<double> tol, const char* option,
+                                   sweep::Body* body_out) {
   if (tol && (!(*tol > 0) || !std::isfinite(*tol)))
-    throw Error(Errc::invalid_input, "--body-tol: the tolerance must be a positive length, got " +
+    throw Error(Errc::invalid_input, std::string(option) +
+                                         ": the tolerance must be a positive length, got " +
                                          kernel::detail::format_double(*tol));
+  sweep::Body body = io::read_body(body_spec);
   sweep::validate(body);
   SweptVolume v = swept_volume(
       motion, body, tol ? *tol : 1e-2 * detail::sampled_box(motion, body).diagonal().norm());
+  if (body_out) *body_out = std::move(body);
+  return v;
+}
+
+render::RenderResult render_volume(const Motion& motion, render::RenderOptions options,
+                                   const std::string& body_spec, std::optional<double> tol) {
+  sweep::Body body;
+  SweptVolume v = detail::preview_volume(motion, body_spec, tol, "--body-tol", &body);
   options.volume_vertices = std::move(v.vertices);
   options.volume_triangles = std::move(v.triangles);
   options.volume_label = "swept volume of " + body.spec + " (encloses it, within " +
