@@ -3,11 +3,6 @@
 # Extra arguments are passed to the CMake configure step.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-launcher=()
-if command -v ccache >/dev/null 2>&1; then
-  launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
-  # Paths relative to the clone, so that another clone (CI's) reuses the cache.
-  export CCACHE_BASEDIR=$PWD CCACHE_NOHASHDIR=1
-fi
+source scripts/ccache-launcher.sh
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" "$@"
 cmake --build build -j "$(nproc)"

@@ -2,7 +2,8 @@
 # Builds qmotion, its tests and its fuzz targets with clang, AddressSanitizer and
 # UndefinedBehaviorSanitizer in ./build-sanitized, then runs the tests of qmotion's own
 # code (kernel, sweep, io, CLI) and the fuzz targets (label fuzz: each fuzzes for
-# QMOTION_FUZZ_SECONDS, default 30, and replays its past findings).
+# QMOTION_FUZZ_SECONDS, default 10, and replays its past findings; scripts/fuzz-long.sh fuzzes
+# for longer).
 # This tree is also the build without CGAL (QMOTION_WITH_CGAL=OFF): it shows that the option
 # configures, builds and passes its tests, without a third build in CI's time. The exact
 # modes (--exact, check --exact) and the mesh self-intersection check are CGAL's; the
@@ -21,23 +22,7 @@
 # Extra arguments go to the CMake configure step (e.g. -DQMOTION_FUZZ_SECONDS=300).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-launcher=()
-if command -v ccache >/dev/null 2>&1; then
-  launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
-  # Paths relative to the clone, so that another clone (CI's) reuses the cache.
-  export CCACHE_BASEDIR=$PWD CCACHE_NOHASHDIR=1
-fi
-# A tree configured with another compiler (GCC, before the fuzz targets) starts afresh.
-if [[ -f build-sanitized/CMakeCache.txt ]] &&
-  ! grep -q '^CMAKE_CXX_COMPILER:.*clang' build-sanitized/CMakeCache.txt; then
-  rm -rf build-sanitized
-fi
-cmake -S . -B build-sanitized -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DQMOTION_SANITIZE=ON -DQMOTION_FUZZ=ON -DQMOTION_BUILD_PYTHON=OFF -DQMOTION_WITH_CGAL=OFF \
-  -DQMOTION_VIEWER=OFF \
-  -DQMOTION_BUILD_BENCHMARKS=OFF -DQMOTION_BUILD_EXAMPLES=OFF -DQMOTION_WARNINGS_AS_ERRORS=ON \
-  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -gline-tables-only -DNDEBUG" "${launcher[@]}" "$@"
-cmake --build build-sanitized -j "$(nproc)"
+scripts/build-sanitized.sh -DQMOTION_FUZZ_SECONDS=10 "$@"
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
 export LSAN_OPTIONS=suppressions=$PWD/tests/sanitizer/lsan.supp:print_suppressions=0
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1

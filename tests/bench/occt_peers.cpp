@@ -25,11 +25,8 @@
 // --smoke (CTest) runs one motion and one profile. The exit status is 1 when the exact
 // route's deviation exceeds 1e-12 of the bounding-box diagonal or it fails.
 #include <malloc.h>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
-#include <boost/iterator/counting_iterator.hpp>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -56,15 +53,9 @@
 #include <string>
 #include <vector>
 
-// CGAL before OpenCASCADE: OpenCASCADE's `Handle` macro breaks CGAL headers after it.
+// OpenCASCADE after qmotion's headers: its `Handle` macro breaks the CGAL headers they
+// include.
 // clang-format off
-#include <CGAL/Simple_cartesian.h>
-#include <CGAL/Search_traits_3.h>
-#include <CGAL/Search_traits_adapter.h>
-#include <CGAL/Orthogonal_k_neighbor_search.h>
-#include <CGAL/property_map.h>
-
-#include "occt_convert.hpp"
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakeWire.hxx>
@@ -74,7 +65,6 @@
 #include <BRep_Tool.hxx>
 #include <GeomAPI_PointsToBSplineSurface.hxx>
 #include <GeomConvert.hxx>
-#include <GeomFill_LocationLaw.hxx>
 #include <GeomFill_Sweep.hxx>
 #include <GeomFill_UniformSection.hxx>
 #include <Geom_BSplineCurve.hxx>
@@ -86,10 +76,9 @@
 #include <IGESSelect_WorkLibrary.hxx>
 #include <STEPControl_Reader.hxx>
 #include <STEPControl_Writer.hxx>
+#include <Standard_Failure.hxx>
 #include <StepData_Protocol.hxx>
 #include <StepData_StepWriter.hxx>
-#include <XSControl_WorkSession.hxx>
-#include <Standard_Failure.hxx>
 #include <TColStd_Array1OfReal.hxx>
 #include <TColgp_Array2OfPnt.hxx>
 #include <TopExp_Explorer.hxx>
@@ -97,17 +86,18 @@
 #include <TopoDS_Face.hxx>
 #include <TopoDS_Shape.hxx>
 #include <TopoDS_Wire.hxx>
-#include <gp_Mat.hxx>
-#include <gp_Vec.hxx>
+#include <XSControl_WorkSession.hxx>
+#include "occt_convert.hpp"
+#include "occt_peers_case.hpp"
+#include "occt_peers_deviation.hpp"
+#include "occt_peers_law.hpp"
 // clang-format on
 
 namespace {
 using namespace qmotion;
-using bench::to_occt;
+using namespace qmotion::bench;
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
-using M4 = Eigen::Matrix4d;
-using V3 = Eigen::Vector3d;
 
 double ms_since(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
@@ -118,372 +108,10 @@ double median(std::vector<double> v) {
   return v.empty() ? 0 : v[v.size() / 2];
 }
 
-// ---- the exact sweep: motion, profile, frame and its derivatives ----------------------
-
-/// The motion's rational frame x -> R(t) x + T(t) with its first two derivatives, from the
-/// homogeneous matrix spline M(t) = [[w, 0], [a, U]] (sweep::matrix_from_factors):
-/// H = M / w, H' = (M' - w' H) / w, H'' = (M'' - 2 w' H' - w'' H) / w.
-struct Frames {
-  kernel::BSpline<M4> M, dM, ddM;
-  double a = 0, b = 1;
-
-  explicit Frames(const kernel::Motion<double>& m)
-      : M(sweep::matrix_from_factors(*m.factors)),
-        dM(kernel::derivative(M)),
-        ddM(kernel::derivative(dM)),
-        a(m.a()),
-        b(m.b()) {}
-
-  void at(double t, M4& H, M4* dH = nullptr, M4* ddH = nullptr) const {
-    const M4 m = kernel::evaluate(M, t);
-    const double w = m(0, 0);
-    H = m / w;
-    if (!dH) return;
-    const M4 m1 = kernel::evaluate(dM, t);
-    *dH = (m1 - m1(0, 0) * H) / w;
-    if (!ddH) return;
-    const M4 m2 = kernel::evaluate(ddM, t);
-    *ddH = (m2 - 2 * m1(0, 0) * *dH - m2(0, 0) * H) / w;
-  }
-
-  /// Interior breakpoints where the motion is less than C^k.
-  std::vector<double> breaks(int k) const {
-    std::vector<double> out;
-    for (const double x : M.breakpoints())
-      if (x != a && x != b && kernel::continuity_at(M, x) < k) out.push_back(x);
-    return out;
-  }
-};
-
-struct Case {
-  std::string motion_name, profile_name;
-  kernel::Motion<double> motion;
-  sweep::NurbsCurve<double> profile;
-  std::shared_ptr<const Frames> frames;
-  sweep::NurbsSurface<double> exact;  // built once for measuring (u = t, v = profile)
-  double diagonal = 0;
-
-  Case(std::string mn, std::string pn, kernel::Motion<double> m, sweep::NurbsCurve<double> c)
-      : motion_name(std::move(mn)),
-        profile_name(std::move(pn)),
-        motion(std::move(m)),
-        profile(std::move(c)),
-        frames(std::make_shared<Frames>(motion)),
-        exact(sweep::kinematic_nurbs(motion, profile)) {
-    V3 lo = V3::Constant(HUGE_VAL), hi = -lo;
-    for (int i = 0; i <= 400; ++i)
-      for (int j = 0; j <= 20; ++j) {
-        const V3 p = point(motion.a() + (motion.b() - motion.a()) * i / 400.0, j / 20.0);
-        lo = lo.cwiseMin(p);
-        hi = hi.cwiseMax(p);
-      }
-    diagonal = (hi - lo).norm();
-  }
-
-  /// The motion-applied profile M(t) c(s), straight from the dual quaternion curve (not
-  /// through any surface).
-  V3 point(double t, double s) const {
-    return kernel::apply_point(kernel::evaluate(motion, t), sweep::evaluate(profile, s));
-  }
-  int spans() const { return static_cast<int>(frames->M.breakpoints().size()) - 1; }
-};
-
 // ---- OpenCASCADE geometry from ours ---------------------------------------------------
-
-/// The profile moved by the motion at t (a rigid map of the poles; weights unchanged).
-sweep::NurbsCurve<double> placed(const Case& c, double t) {
-  M4 H;
-  c.frames->at(t, H);
-  sweep::NurbsCurve<double> out = c.profile;
-  for (auto& p : out.points) p = H.block<3, 3>(1, 1) * p + H.block<3, 1>(1, 0);
-  return out;
-}
 
 TopoDS_Wire wire_of(const Handle(Geom_Curve) & c) {
   return BRepBuilderAPI_MakeWire(BRepBuilderAPI_MakeEdge(c)).Wire();
-}
-
-// ---- route 2's location law: our motion, exactly ----------------------------------------
-
-gp_Mat to_gp_mat(const Eigen::Matrix3d& m) {
-  return gp_Mat(m(0, 0), m(0, 1), m(0, 2), m(1, 0), m(1, 1), m(1, 2), m(2, 0), m(2, 1), m(2, 2));
-}
-gp_Vec to_gp_vec(const V3& v) { return gp_Vec(v.x(), v.y(), v.z()); }
-
-/// The section is placed at M * P + V with M = R(t) and V = T(t) of our motion: the
-/// location law an OpenCASCADE user writes to sweep along a rigid motion they can evaluate.
-class MotionLaw : public GeomFill_LocationLaw {
- public:
-  explicit MotionLaw(std::shared_ptr<const Frames> f)
-      : f_(std::move(f)), first_(f_->a), last_(f_->b) {}
-
-  void SetCurve(const Handle(Adaptor3d_Curve) &) override {}
-  const Handle(Adaptor3d_Curve) & GetCurve() const override { return curve_; }
-  void SetTrsf(const gp_Mat& t) override { trsf_ = t; }
-  Handle(GeomFill_LocationLaw) Copy() const override {
-    Handle(MotionLaw) c = new MotionLaw(f_);
-    c->trsf_ = trsf_;
-    c->first_ = first_;
-    c->last_ = last_;
-    return c;
-  }
-  Standard_Boolean D0(const Standard_Real t, gp_Mat& M, gp_Vec& V) override {
-    M4 H;
-    f_->at(t, H);
-    M = to_gp_mat(H.block<3, 3>(1, 1)) * trsf_;
-    V = to_gp_vec(H.block<3, 1>(1, 0));
-    return Standard_True;
-  }
-  Standard_Boolean D0(const Standard_Real t, gp_Mat& M, gp_Vec& V, TColgp_Array1OfPnt2d&) override {
-    return D0(t, M, V);
-  }
-  Standard_Boolean D1(const Standard_Real t, gp_Mat& M, gp_Vec& V, gp_Mat& DM, gp_Vec& DV,
-                      TColgp_Array1OfPnt2d&, TColgp_Array1OfVec2d&) override {
-    M4 H, dH;
-    f_->at(t, H, &dH);
-    M = to_gp_mat(H.block<3, 3>(1, 1)) * trsf_;
-    V = to_gp_vec(H.block<3, 1>(1, 0));
-    DM = to_gp_mat(dH.block<3, 3>(1, 1)) * trsf_;
-    DV = to_gp_vec(dH.block<3, 1>(1, 0));
-    return Standard_True;
-  }
-  Standard_Boolean D2(const Standard_Real t, gp_Mat& M, gp_Vec& V, gp_Mat& DM, gp_Vec& DV,
-                      gp_Mat& D2M, gp_Vec& D2V, TColgp_Array1OfPnt2d&, TColgp_Array1OfVec2d&,
-                      TColgp_Array1OfVec2d&) override {
-    M4 H, dH, ddH;
-    f_->at(t, H, &dH, &ddH);
-    M = to_gp_mat(H.block<3, 3>(1, 1)) * trsf_;
-    V = to_gp_vec(H.block<3, 1>(1, 0));
-    DM = to_gp_mat(dH.block<3, 3>(1, 1)) * trsf_;
-    DV = to_gp_vec(dH.block<3, 1>(1, 0));
-    D2M = to_gp_mat(ddH.block<3, 3>(1, 1)) * trsf_;
-    D2V = to_gp_vec(ddH.block<3, 1>(1, 0));
-    return Standard_True;
-  }
-  Standard_Integer NbIntervals(const GeomAbs_Shape S) const override {
-    return static_cast<Standard_Integer>(inside(S).size()) + 1;
-  }
-  void Intervals(TColStd_Array1OfReal& T, const GeomAbs_Shape S) const override {
-    const auto b = inside(S);
-    T.SetValue(T.Lower(), first_);
-    for (std::size_t i = 0; i < b.size(); ++i)
-      T.SetValue(T.Lower() + static_cast<int>(i) + 1, b[i]);
-    T.SetValue(T.Upper(), last_);
-  }
-  void SetInterval(const Standard_Real a, const Standard_Real b) override {
-    first_ = a;
-    last_ = b;
-  }
-  void GetInterval(Standard_Real& a, Standard_Real& b) const override {
-    a = first_;
-    b = last_;
-  }
-  void GetDomain(Standard_Real& a, Standard_Real& b) const override {
-    a = f_->a;
-    b = f_->b;
-  }
-  Standard_Real GetMaximalNorm() override {
-    double n = 0;
-    for (int i = 0; i <= 200; ++i) {
-      M4 H;
-      f_->at(f_->a + (f_->b - f_->a) * i / 200.0, H);
-      n = std::max(n, H.block<3, 1>(1, 0).norm());
-    }
-    return n;
-  }
-  void GetAverageLaw(gp_Mat& AM, gp_Vec& AV) override {
-    M4 sum = M4::Zero();
-    for (int i = 0; i <= 100; ++i) {
-      M4 H;
-      f_->at(f_->a + (f_->b - f_->a) * i / 100.0, H);
-      sum += H / 101.0;
-    }
-    AM = to_gp_mat(sum.block<3, 3>(1, 1));
-    AV = to_gp_vec(sum.block<3, 1>(1, 0));
-  }
-
- private:
-  std::vector<double> inside(GeomAbs_Shape S) const {
-    const int k = S == GeomAbs_C0 ? 0 : S == GeomAbs_C1 ? 1 : S == GeomAbs_C2 ? 2 : 3;
-    std::vector<double> out;
-    for (double x : f_->breaks(k))
-      if (x > first_ && x < last_) out.push_back(x);
-    return out;
-  }
-  std::shared_ptr<const Frames> f_;
-  Handle(Adaptor3d_Curve) curve_;
-  gp_Mat trsf_{1, 0, 0, 0, 1, 0, 0, 0, 1};
-  double first_, last_;
-};
-
-// ---- deviation: dense samples both ways, nearest seeds from a k-d tree, Gauss-Newton -----
-
-using Kernel = CGAL::Simple_cartesian<double>;
-using Pt = Kernel::Point_3;
-using TreeTraits = CGAL::Search_traits_adapter<std::size_t, CGAL::Pointer_property_map<Pt>::type,
-                                               CGAL::Search_traits_3<Kernel>>;
-using Search = CGAL::Orthogonal_k_neighbor_search<TreeTraits>;
-
-/// Dense samples of a surface with their (face, u, v), and a k-d tree over them.
-struct Samples {
-  mutable std::vector<Pt> pts;  // mutable: CGAL's distance adapter takes a non-const map
-  std::vector<std::array<double, 3>> where;  // face, u, v
-  std::unique_ptr<Search::Tree> tree;
-
-  void add(int face, double u, double v, const V3& p) {
-    pts.emplace_back(p.x(), p.y(), p.z());
-    where.push_back({double(face), u, v});
-  }
-  void build() {
-    tree = std::make_unique<Search::Tree>(
-        boost::counting_iterator<std::size_t>(0), boost::counting_iterator<std::size_t>(pts.size()),
-        Search::Tree::Splitter(), TreeTraits(CGAL::make_property_map(pts)));
-    tree->build();  // now, not lazily inside a (concurrent) query
-  }
-  std::vector<std::size_t> nearest(const V3& x, unsigned k) const {
-    Search::Distance d(CGAL::make_property_map(pts));
-    Search s(*tree, Pt(x.x(), x.y(), x.z()), k, 0, true, d);
-    std::vector<std::size_t> out;
-    for (auto it = s.begin(); it != s.end(); ++it) out.push_back(it->first);
-    return out;
-  }
-};
-
-struct OcctFace {
-  Handle(Geom_Surface) s;
-  double u0, u1, v0, v1;
-};
-
-/// Distance from x to the face near (u, v): Gauss-Newton on |S - x|^2 in the UV box.
-double face_distance(const OcctFace& f, const V3& x, double u, double v) {
-  double best = HUGE_VAL;
-  for (int it = 0; it <= 12; ++it) {
-    gp_Pnt P;
-    gp_Vec Su, Sv;
-    f.s->D1(u, v, P, Su, Sv);
-    const V3 S(P.X(), P.Y(), P.Z()), su(Su.X(), Su.Y(), Su.Z()), sv(Sv.X(), Sv.Y(), Sv.Z());
-    const V3 r = x - S;
-    best = std::min(best, r.norm());
-    Eigen::Matrix2d J;
-    J << su.dot(su), su.dot(sv), su.dot(sv), sv.dot(sv);
-    if (!(J.determinant() > 1e-30 * J.squaredNorm())) break;
-    const Eigen::Vector2d d = J.ldlt().solve(Eigen::Vector2d(su.dot(r), sv.dot(r)));
-    u = std::clamp(u + d(0), f.u0, f.u1);
-    v = std::clamp(v + d(1), f.v0, f.v1);
-    if (d.norm() < 1e-16) break;
-  }
-  return best;
-}
-
-std::vector<OcctFace> faces_of(const TopoDS_Shape& shape) {
-  std::vector<OcctFace> out;
-  for (TopExp_Explorer e(shape, TopAbs_FACE); e.More(); e.Next()) {
-    const TopoDS_Face& f = TopoDS::Face(e.Current());
-    OcctFace o;
-    o.s = BRep_Tool::Surface(f);
-    BRepTools::UVBounds(f, o.u0, o.u1, o.v0, o.v1);
-    out.push_back(o);
-  }
-  return out;
-}
-
-int sample_count(int spans) { return std::clamp(8 * spans + 24, 24, 1600); }
-
-/// Sample counts along u and v of a surface over [u0, u1] x [v0, v1] so that neighbouring
-/// samples are at most h apart (the longest of three iso-curves in each direction, measured
-/// as polylines of `probe` points), at least 16 and at most 4000.
-std::pair<int, int> counts_for(const std::function<V3(double, double)>& S, double u0, double u1,
-                               double v0, double v1, double h, int probe) {
-  auto longest = [&](bool along_u) {
-    double L = 0;
-    for (double f : {0.0, 0.5, 1.0}) {
-      double l = 0;
-      V3 prev;
-      for (int i = 0; i <= probe; ++i) {
-        const double a = double(i) / probe;
-        const V3 p = along_u ? S(u0 + (u1 - u0) * a, v0 + (v1 - v0) * f)
-                             : S(u0 + (u1 - u0) * f, v0 + (v1 - v0) * a);
-        if (i) l += (p - prev).norm();
-        prev = p;
-      }
-      L = std::max(L, l);
-    }
-    return std::clamp(static_cast<int>(L / h) + 1, 16, 4000);
-  };
-  return {longest(true), longest(false)};
-}
-
-/// The Hausdorff distance between the shape's faces and the exact surface, both ways: every
-/// sample of one (at most 1/resolution of the diagonal apart) against the other, from the
-/// best of its four nearest samples there (a k-d tree), by Gauss-Newton. Seeds that close keep
-/// the foot point on the right sheet where the surface folds over itself.
-double deviation(const Case& c, const std::vector<OcctFace>& faces, int resolution) {
-  const sweep::SurfaceEvaluator E(c.exact);
-  const double h = c.diagonal / resolution;
-  const int probe = 8 * c.spans() + 256;
-  constexpr unsigned kSeeds = 4;
-  Samples ex;
-  const auto [nu, nv] = counts_for([&](double u, double v) { return E(u, v); }, E.u0(), E.u1(),
-                                   E.v0(), E.v1(), h, probe);
-  for (int i = 0; i <= nu; ++i)
-    for (int j = 0; j <= nv; ++j) {
-      const double u = E.u0() + (E.u1() - E.u0()) * i / nu, v = E.v0() + (E.v1() - E.v0()) * j / nv;
-      ex.add(0, u, v, E(u, v));
-    }
-  ex.build();
-  Samples rt;
-  for (std::size_t k = 0; k < faces.size(); ++k) {
-    const auto& f = faces[k];
-    const auto value = [&](double u, double v) {
-      const gp_Pnt p = f.s->Value(u, v);
-      return V3(p.X(), p.Y(), p.Z());
-    };
-    const auto [n1, n2] = counts_for(value, f.u0, f.u1, f.v0, f.v1, h, probe);
-    for (int i = 0; i <= n1; ++i)
-      for (int j = 0; j <= n2; ++j) {
-        const double u = f.u0 + (f.u1 - f.u0) * i / n1, v = f.v0 + (f.v1 - f.v0) * j / n2;
-        rt.add(static_cast<int>(k), u, v, value(u, v));
-      }
-  }
-  rt.build();
-  // Route -> exact on every core (our evaluator and the built tree are read-only).
-  double dev = tbb::parallel_reduce(
-      tbb::blocked_range<std::size_t>(0, rt.pts.size()), 0.0,
-      [&](const tbb::blocked_range<std::size_t>& r, double m) {
-        for (std::size_t i = r.begin(); i < r.end(); ++i) {
-          const V3 x(rt.pts[i].x(), rt.pts[i].y(), rt.pts[i].z());
-          double d = HUGE_VAL;
-          for (std::size_t s : ex.nearest(x, kSeeds))
-            d = std::min(d, E.distance(x, ex.where[s][1], ex.where[s][2], 12));
-          m = std::max(m, d);
-        }
-        return m;
-      },
-      [](double a, double b) { return std::max(a, b); });
-  for (std::size_t i = 0; i < ex.pts.size(); ++i) {  // exact -> route
-    const V3 x(ex.pts[i].x(), ex.pts[i].y(), ex.pts[i].z());
-    double d = HUGE_VAL;
-    for (std::size_t s : rt.nearest(x, kSeeds)) {
-      const auto& w = rt.where[s];
-      d = std::min(d, face_distance(faces[static_cast<std::size_t>(w[0])], x, w[1], w[2]));
-    }
-    dev = std::max(dev, d);
-  }
-  return dev;
-}
-
-/// The exact route's deviation at equal parameters: the surface read back at (t, s) against
-/// M(t) c(s) from the dual quaternion curve (an upper bound of the geometric distance).
-double parametric_deviation(const Case& c, const OcctFace& f) {
-  double dev = 0;
-  const int nu = sample_count(c.spans()), nv = 64;
-  for (int i = 0; i <= nu; ++i)
-    for (int j = 0; j <= nv; ++j) {
-      const double t = c.motion.a() + (c.motion.b() - c.motion.a()) * i / nu, s = double(j) / nv;
-      const gp_Pnt p = f.s->Value(t, s);
-      dev = std::max(dev, (V3(p.X(), p.Y(), p.Z()) - c.point(t, s)).norm());
-    }
-  return dev;
 }
 
 std::string fmt(double x, int prec = 3) {
