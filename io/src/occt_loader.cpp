@@ -3,6 +3,7 @@
 #include <dlfcn.h>
 
 #include <filesystem>
+#include <qmotion/io/atomic_file.hpp>
 #include <qmotion/io/occt.hpp>
 #include <qmotion/kernel/error.hpp>
 #include <string>
@@ -54,36 +55,84 @@ const plugin::Table& table() {
   return *loaded;
 }
 
+/// Errc::invalid_input, before anything is built, when the file's floor is over the limit.
+template <typename Geometry>
+void refuse_large(const std::string& path, const Geometry& g, const char* format,
+                  std::uintmax_t pole_bytes) {
+  const std::uintmax_t n = io::control_points(g);  // not a unity neighbour's helper
+  if (n > kMaxFileBytes / pole_bytes)
+    throw Error(Errc::invalid_input,
+                path + ": the " + format + " file would be at least " +
+                    std::to_string(n * pole_bytes) + " bytes (" + std::to_string(n) +
+                    " control points), more than " + std::to_string(kMaxFileBytes) +
+                    " (the limit of a file qmotion reads or writes, which bounds memory): "
+                    "refused before it is built");
+}
+template <typename Geometry>
+void refuse_large_step(const std::string& path, const Geometry& g) {
+  refuse_large(path, g, "STEP", kStepPoleBytes);
+}
+template <typename Geometry>
+void refuse_large_iges(const std::string& path, const Geometry& g) {
+  refuse_large(path, g, "IGES", kIgesPoleBytes);
+}
+
 }  // namespace
+
+std::uintmax_t control_points(const sweep::NurbsCurve<double>& c) { return c.points.size(); }
+std::uintmax_t control_points(const sweep::NurbsSurface<double>& s) {
+  std::uintmax_t n = 0;
+  for (const auto& row : s.points) n += row.size();
+  return n;
+}
+std::uintmax_t control_points(const sweep::NurbsShell<double>& s) {
+  std::uintmax_t n = 0;
+  for (const auto& f : s.faces) n += control_points(f);
+  for (const auto* cap : {&s.cap_start, &s.cap_end})
+    for (const auto& c : *cap) n += control_points(c);
+  return n;
+}
+std::uintmax_t control_points(const std::vector<sweep::NurbsCurve<double>>& wire) {
+  std::uintmax_t n = 0;
+  for (const auto& c : wire) n += control_points(c);
+  return n;
+}
 
 int occt_max_degree() { return table().occt_max_degree(); }
 
 void write_step(const std::string& path, const sweep::NurbsSurface<double>& s,
                 const ExportInfo& info) {
+  refuse_large_step(path, s);
   table().write_step_surface(path, s, info);
 }
 void write_step(const std::string& path, const sweep::NurbsCurve<double>& c,
                 const ExportInfo& info) {
+  refuse_large_step(path, c);
   table().write_step_curve(path, c, info);
 }
 void write_iges(const std::string& path, const sweep::NurbsSurface<double>& s,
                 const ExportInfo& info) {
+  refuse_large_iges(path, s);
   table().write_iges_surface(path, s, info);
 }
 void write_iges(const std::string& path, const sweep::NurbsCurve<double>& c,
                 const ExportInfo& info) {
+  refuse_large_iges(path, c);
   table().write_iges_curve(path, c, info);
 }
 void write_step(const std::string& path, const sweep::NurbsShell<double>& s,
                 const ExportInfo& info) {
+  refuse_large_step(path, s);
   table().write_step_shell(path, s, info);
 }
 void write_iges(const std::string& path, const sweep::NurbsShell<double>& s,
                 const ExportInfo& info) {
+  refuse_large_iges(path, s);
   table().write_iges_shell(path, s, info);
 }
 void write_step(const std::string& path, const std::vector<sweep::NurbsCurve<double>>& wire,
                 const ExportInfo& info) {
+  refuse_large_step(path, wire);
   table().write_step_wire(path, wire, info);
 }
 std::vector<FaceMesh> mesh_shell(const sweep::NurbsShell<double>& s, double deflection,

@@ -4,6 +4,7 @@
 // arrays and knot/multiplicity pairs stay in occt.cpp (STYLE §4, §9).
 #include <Eigen/Core>
 #include <array>
+#include <cstdint>
 #include <functional>
 #include <qmotion/sweep/nurbs.hpp>
 #include <qmotion/sweep/shell.hpp>
@@ -48,6 +49,22 @@ void write_iges(const std::string& path, const sweep::NurbsShell<double>& s,
 /// A wire: the curves in order, joined end to start (a profile of several edges).
 void write_step(const std::string& path, const std::vector<sweep::NurbsCurve<double>>& wire,
                 const ExportInfo& info);
+
+/// The control points a STEP or IGES file of the geometry holds at least: every pole of every
+/// face and curve (a shell's cap edges once: a face's boundary may share them).
+std::uintmax_t control_points(const sweep::NurbsSurface<double>& s);
+std::uintmax_t control_points(const sweep::NurbsCurve<double>& c);
+std::uintmax_t control_points(const sweep::NurbsShell<double>& s);
+std::uintmax_t control_points(const std::vector<sweep::NurbsCurve<double>>& wire);
+
+/// Floors on the bytes a control point takes in the files write_step and write_iges write,
+/// every real at 17 significant digits (at least 23 characters; OpenCASCADE does not shorten
+/// zeros). STEP: a CARTESIAN_POINT entity of three reals with its name and brackets. IGES: three
+/// reals in the parameter section, two to an 80-column record. The writers refuse geometry
+/// whose control points times its floor pass kMaxFileBytes before OpenCASCADE builds anything:
+/// the file would be refused anyway, after OpenCASCADE held it several times over in memory.
+inline constexpr std::uintmax_t kStepPoleBytes = 100;
+inline constexpr std::uintmax_t kIgesPoleBytes = 120;
 
 /// One face of a shell as OpenCASCADE's mesher (BRepMesh_IncrementalMesh) triangulated it.
 struct FaceMesh {
