@@ -12,6 +12,7 @@
 #include <qmotion/io/units.hpp>
 #include <qmotion/kernel/error.hpp>
 #include <qmotion/sweep/shell.hpp>
+#include <qmotion/sweep/span_faces.hpp>
 #include <sstream>
 
 #include "export_detail.hpp"
@@ -254,6 +255,8 @@ void write_surfaces(const std::vector<sweep::NurbsSurface<double>>& surfaces, Fo
   for (const auto& s : surfaces) {
     if (opt.single_face) {
       shell.faces.push_back(s);
+    } else if (opt.solid && f != Format::mesh) {  // one face a u span: FreeCAD's volume
+      for (auto& piece : sweep::split_u_spans(s)) shell.faces.push_back(std::move(piece));
     } else {
       for (auto& piece : sweep::split_c0(s)) shell.faces.push_back(std::move(piece));
     }

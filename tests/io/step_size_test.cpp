@@ -6,38 +6,24 @@
 #include <qmotion/io/atomic_file.hpp>
 #include <qmotion/io/occt.hpp>
 #include <qmotion/sweep/profiles.hpp>
-#include <random>
 #include <string>
 
 #include "io_test_util.hpp"
+#include "surface_util.hpp"
 
 namespace qmotion::test {
 namespace {
 namespace fs = std::filesystem;
 
-/// A clamped rational surface of nu x nv poles, degree 3 x 2, random poles and weights.
-sweep::NurbsSurface<double> random_surface(int nu, int nv, unsigned seed) {
-  std::mt19937 g(seed);
-  std::uniform_real_distribution<double> u(-1, 1);
-  sweep::NurbsSurface<double> s;
-  s.degree_u = 3;
-  s.degree_v = 2;
+/// A clamped rational surface of nu x nv poles, degree 3 x 2, even knots, random poles.
+sweep::NurbsSurface<double> clamped_surface(int nu, int nv, unsigned seed) {
   auto clamped = [](int n, int p) {
     std::vector<double> k(static_cast<std::size_t>(p + 1), 0.0);
     for (int i = 1; i < n - p; ++i) k.push_back(double(i) / (n - p));
     k.insert(k.end(), static_cast<std::size_t>(p + 1), 1.0);
     return k;
   };
-  s.knots_u = clamped(nu, 3);
-  s.knots_v = clamped(nv, 2);
-  s.points.assign(static_cast<std::size_t>(nu), {});
-  s.weights.assign(static_cast<std::size_t>(nu), {});
-  for (int i = 0; i < nu; ++i)
-    for (int j = 0; j < nv; ++j) {
-      s.points[std::size_t(i)].emplace_back(i + u(g) * 0.3, j + u(g) * 0.3, u(g) * 5);
-      s.weights[std::size_t(i)].push_back(0.5 + std::abs(u(g)));
-    }
-  return s;
+  return random_surface(3, clamped(nu, 3), 2, clamped(nv, 2), seed);
 }
 
 /// The peak resident memory of this process so far (VmHWM), in bytes.
@@ -54,7 +40,7 @@ std::uintmax_t peak_rss() {
 }
 
 TEST(StepSize, TheFloorIsBelowEveryFileWritten) {
-  const auto small = random_surface(6, 4, 1), large = random_surface(60, 40, 2);
+  const auto small = clamped_surface(6, 4, 1), large = clamped_surface(60, 40, 2);
   const auto arc = sweep::arc(7.0 / 3.0, 10.0, 300.0);
   sweep::NurbsShell<double> shell;
   shell.faces = {large};
@@ -91,7 +77,7 @@ TEST(StepSize, TheFloorIsBelowEveryFileWritten) {
 TEST(StepSize, AnExportOverTheLimitIsRefusedBeforeMemoryGrows) {
   // 5.52 million poles: a floor of 552 MB, over the 512 MiB limit (the surface itself holds
   // 177 MB here; OpenCASCADE would hold its text and entities several times over).
-  auto s = random_surface(2400, 2300, 3);
+  auto s = clamped_surface(2400, 2300, 3);
   ASSERT_GT(io::control_points(s) * io::kStepPoleBytes, io::kMaxFileBytes);
   ASSERT_GT(io::control_points(s) * io::kIgesPoleBytes, io::kMaxFileBytes);
   const auto out = scratch_path("step_size", "huge.step");
