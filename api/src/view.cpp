@@ -121,7 +121,7 @@ json View::report() const {
 json volume_data(const Motion& motion, const ViewOptions& o) {
   if (o.body.empty())
     throw Error(Errc::invalid_input, "--volume: the swept volume is the body's: give --body");
-  const SweptVolume v = detail::preview_volume(motion, o.body, o.volume_tol, "--body-tol", nullptr);
+  const SweptVolume v = detail::preview_volume(motion, o.body, o.volume_tol, nullptr);
   json positions = json::array(), indices = json::array();
   for (const auto& p : v.vertices) positions.insert(positions.end(), {p.x(), p.y(), p.z()});
   for (const auto& t : v.triangles) indices.insert(indices.end(), {t[0], t[1], t[2]});

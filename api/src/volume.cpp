@@ -22,11 +22,9 @@
 namespace qmotion {
 
 SweptVolume detail::preview_volume(const Motion& motion, const std::string& body_spec,
-                                   std::optional<double> tol, const char* option,
-                                   sweep::Body* body_out) {
+                                   std::optional<double> tol, sweep::Body* body_out) {
   if (tol && (!(*tol > 0) || !std::isfinite(*tol)))
-    throw Error(Errc::invalid_input, std::string(option) +
-                                         ": the tolerance must be a positive length, got " +
+    throw Error(Errc::invalid_input, "--body-tol: the tolerance must be a positive length, got " +
                                          kernel::detail::format_double(*tol));
   sweep::Body body = io::read_body(body_spec);
   sweep::validate(body);
@@ -39,7 +37,7 @@ SweptVolume detail::preview_volume(const Motion& motion, const std::string& body
 render::RenderResult render_volume(const Motion& motion, render::RenderOptions options,
                                    const std::string& body_spec, std::optional<double> tol) {
   sweep::Body body;
-  SweptVolume v = detail::preview_volume(motion, body_spec, tol, "--body-tol", &body);
+  SweptVolume v = detail::preview_volume(motion, body_spec, tol, &body);
   options.volume_vertices = std::move(v.vertices);
   options.volume_triangles = std::move(v.triangles);
   options.volume_label = "swept volume of " + body.spec + " (encloses it, within " +

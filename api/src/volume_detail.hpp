@@ -57,10 +57,10 @@ void refuse_size(const Motion& motion, double T, std::size_t triangles);
 /// The bounding box of V, sampled: the body's triangulation at 64 times a segment.
 Eigen::AlignedBox3d sampled_box(const Motion& m, const sweep::Body& body);
 
-/// The body of a preview (render --body, view --volume) and its mesh, at tol or by default at
-/// 1e-2 of the sampled box's diagonal. `option` names the tolerance's flag in a refusal.
+/// The body of a preview (render --body, view --volume) and its mesh, at tol (--body-tol) or
+/// by default at 1e-2 of the sampled box's diagonal; the body read goes to body_out if given.
 SweptVolume preview_volume(const Motion& motion, const std::string& body_spec,
-                           std::optional<double> tol, const char* option, sweep::Body* body_out);
+                           std::optional<double> tol, sweep::Body* body_out);
 
 /// The largest distance float32 rounding moves a point whose coordinates are at most
 /// `largest` in magnitude: sqrt(3) 2^-24 largest (round to nearest, normal floats), with a
