@@ -29,6 +29,7 @@
 
 #include "volume_detail.hpp"
 #include "volume_octree.hpp"
+#include "volume_tets.hpp"
 
 namespace qmotion::detail {
 namespace {
@@ -38,6 +39,10 @@ namespace {
 /// the interpolation's error (at most T). 0.85 made the fewest triangles on the helix
 /// (0.5: 449 250 at T = 0.05 mm, 0.8: 239 874, 0.88: 219 584, 0.94: 224 402).
 constexpr double kLevel = 0.85;
+/// A vertex is placed within kLevelSlack T of the level, by at most kPlaceQueries queries of
+/// the time tree along its edge (place_vertices).
+constexpr double kLevelSlack = 0.02;
+constexpr int kPlaceQueries = 4;
 
 /// A point's certified distance to V from its query: the placement's, with rounding (relative
 /// 1e-12 of the scene).
@@ -45,25 +50,19 @@ double certified_distance(const sweep::VolumeDistance& d, double scale) {
   return std::max(d.signed_upper, 0.0) + 1e-12 * scale;
 }
 
-/// A vertex of the surface: the tetrahedra's edge it lies on, by its ends' keys (lower first).
-struct EdgeKey {
-  OctKey a = 0, b = 0;
-  bool operator==(const EdgeKey& o) const { return a == o.a && b == o.b; }
-  bool operator<(const EdgeKey& o) const { return a < o.a || (a == o.a && b < o.b); }
-};
-struct EdgeHash {
-  std::size_t operator()(const EdgeKey& e) const {
-    return static_cast<std::size_t>((e.a * 0x9E3779B97F4A7C15ull) ^ (e.b + (e.a << 6)));
-  }
-};
-using Tri = std::array<EdgeKey, 3>;
-
 struct Leaf {
   OctKey key = 0;
   std::vector<Tri> tris;     ///< this round's
   std::vector<Tri> checked;  ///< the triangles last certified (all of them passed)
   bool ok = false;
   double inside = 0;  ///< volume of its tetrahedra certified inside V
+};
+
+/// A vertex of the surface and what its query found there.
+struct Bound {
+  Eigen::Vector3d x = Eigen::Vector3d::Zero();  ///< the vertex
+  sweep::VolumeDistance d;
+  Eigen::Vector3d n = Eigen::Vector3d::Zero();
 };
 
 class Mesher {
@@ -96,7 +95,7 @@ class Mesher {
       std::size_t count = 0;
       for (const auto& [k, L] : leaves_) count += L.tris.size();
       refuse_size(motion_, T_, count);
-      bound_vertices(dirty);
+      place_vertices(dirty);
       for_each(dirty, [&](Leaf& L) { certify(L); });
       std::vector<OctKey> failed;
       for (Leaf* L : dirty)
@@ -163,9 +162,10 @@ class Mesher {
     std::vector<Octree::Kind> kind(todo.size());
     std::vector<int> node(todo.size());
     tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t i) {
-      const double r = half_diagonal(todo[i]);
-      const auto d = tree_.query(centre(todo[i]), -(r + 2 * tree_.largest_leaf_delta()),
-                                 octree_.leaves().at(todo[i]).node);
+      const double r = half_diagonal(todo[i]), gap = tree_.largest_leaf_delta();
+      // Above tau + eps + r + gap the cell is far whatever the distance is (query()).
+      const auto d = tree_.query(centre(todo[i]), -(r + 2 * gap), octree_.leaves().at(todo[i]).node,
+                                 tau_ + eps_ + r + 2 * gap);
       node[i] = d.node;
       if (d.lower - r > tau_ + eps_)
         kind[i] = Octree::Kind::far;
@@ -231,8 +231,12 @@ class Mesher {
       const OctPoint p = Octree::vertex_point(all[i].first);
       // Deeper than twice the coarsest cell the corner belongs to, the depth is not needed.
       const double reach = 2 * static_cast<double>(Octree::alignment(p)) * octree_.unit();
-      const auto d = tree_.query(octree_.position(p), -reach, all[i].second);
-      double x = d.signed_upper;
+      // Far above the level the value only has to be above it: a query that finds no
+      // placement below `above` has shown f >= above - gap > tau (query()), and `above`
+      // then stands for phi.
+      const double above = tau_ + eps_ + std::max(reach, T_) + 2 * tree_.largest_leaf_delta();
+      const auto d = tree_.query(octree_.position(p), -reach, all[i].second, above);
+      double x = d.signed_upper < HUGE_VAL ? d.signed_upper : above;
       // No corner on the level: within eps of tau it is moved below (the surface's vertices
       // are bounded where they lie, whatever phi is).
       if (std::abs(x - tau_) < eps_) x = tau_ - eps_;
@@ -242,12 +246,8 @@ class Mesher {
     for (std::size_t i = 0; i < all.size(); ++i) value_.emplace(all[i].first, v[i]);
   }
 
-  Eigen::Vector3d on_edge(const EdgeKey& e) const {
-    const double va = value_.at(e.a).v, vb = value_.at(e.b).v;
-    const Eigen::Vector3d pa = octree_.position(Octree::vertex_point(e.a)),
-                          pb = octree_.position(Octree::vertex_point(e.b));
-    return pa + (tau_ - va) / (vb - va) * (pb - pa);
-  }
+  /// The surface's vertex on edge e (place_vertices).
+  const Eigen::Vector3d& on_edge(const EdgeKey& e) const { return bound_.at(e).x; }
 
   /// Marching tetrahedra over a leaf: each triangle faces from below tau to above. Also sums
   /// the tetrahedra that lie in V (inside_part).
@@ -259,78 +259,30 @@ class Mesher {
     for (const auto& t : tets) {
       OctKey k[4];
       double v[4], at[4];
-      int in[4], ot[4], ni = 0, no = 0;
       for (int i = 0; i < 4; ++i) {
         k[i] = Octree::vertex_key(t[static_cast<std::size_t>(i)]);
         const Value& x = value_.at(k[i]);
         v[i] = x.v;
         at[i] = x.t;
-        (v[i] < tau_ ? in[ni++] : ot[no++]) = i;
       }
-      if (no == 0) {
-        L.inside += inside_part(t, v, at);
-        continue;
-      }
-      if (ni == 0) continue;
-      auto edge = [&](int i, int o) {
-        return k[i] < k[o] ? EdgeKey{k[i], k[o]} : EdgeKey{k[o], k[i]};
-      };
-      const Eigen::Vector3d toward = octree_.position(t[static_cast<std::size_t>(ot[0])]) -
-                                     octree_.position(t[static_cast<std::size_t>(in[0])]);
-      auto emit = [&](const EdgeKey& a, const EdgeKey& b, const EdgeKey& c) {
-        const Eigen::Vector3d pa = on_edge(a), pb = on_edge(b), pc = on_edge(c);
-        if ((pb - pa).cross(pc - pa).dot(toward) >= 0)
-          out.push_back({a, b, c});
-        else
-          out.push_back({a, c, b});
-      };
-      if (ni == 1) {
-        emit(edge(in[0], ot[0]), edge(in[0], ot[1]), edge(in[0], ot[2]));
-      } else if (ni == 3) {
-        emit(edge(in[0], ot[0]), edge(in[1], ot[0]), edge(in[2], ot[0]));
-      } else {  // a planar quadrilateral: i0o0, i0o1, i1o1, i1o0 in turn
-        emit(edge(in[0], ot[0]), edge(in[0], ot[1]), edge(in[1], ot[1]));
-        emit(edge(in[0], ot[0]), edge(in[1], ot[1]), edge(in[1], ot[0]));
-      }
+      Eigen::Vector3d p[4];
+      for (int i = 0; i < 4; ++i) p[i] = octree_.position(t[static_cast<std::size_t>(i)]);
+      L.inside += inside_part(p, v, at, tree_, scale_);
+      march(t, k, v, tau_, out);
     }
     return out;
   }
 
-  /// The tetrahedron's volume when it lies in V, else 0: when its four corners lie in one
-  /// placement of a convex body, or each in its own deeper than the circumradius (every
-  /// point of a tetrahedron is within it of a corner).
-  double inside_part(const Octree::Tet& t, const double* v, const double* at) const {
-    for (int i = 0; i < 4; ++i)
-      if (!(v[i] < 0)) return 0;
-    Eigen::Vector3d p[4];
-    for (int i = 0; i < 4; ++i) p[i] = octree_.position(t[static_cast<std::size_t>(i)]);
-    Eigen::Matrix3d A;
-    Eigen::Vector3d b;
-    for (int i = 0; i < 3; ++i) {
-      A.row(i) = (p[i + 1] - p[0]).transpose();
-      b(i) = 0.5 * (p[i + 1] - p[0]).squaredNorm();
-    }
-    const double det = A.determinant();
-    if (!(std::abs(det) > 0)) return 0;
-    const double R = (A.inverse() * b).norm() * (1 + 1e-9);
-    bool balls = true;
-    for (int i = 0; i < 4; ++i) balls = balls && -v[i] >= R;
-    if (balls) return std::abs(det) / 6;
-    if (!sweep::is_convex(tree_.body())) return 0;
-    const double margin = 1e-12 * scale_;
-    for (int j = 0; j < 4; ++j) {
-      bool in_one = true;
-      for (int i = 0; i < 4 && in_one; ++i)
-        in_one = i == j || tree_.placed_distance(p[i], at[j]) < -margin;
-      if (in_one) return std::abs(det) / 6;
-    }
-    return 0;
-  }
-
-  /// Each new vertex's distance to V, bounded above by the best placement of a search, and
-  /// the direction from that placement of the body to the vertex (the subgradient of its
-  /// signed distance): about the surface, the direction that separates it from V.
-  void bound_vertices(const std::vector<Leaf*>& dirty) {
+  /// Each new vertex: the point of its edge where phi crosses tau, found by false position
+  /// (Illinois) from the corners' values; its distance to V bounded above by the best
+  /// placement of that search, and the direction from that placement of the body to the
+  /// vertex (the subgradient of its signed distance): about the surface, the direction that
+  /// separates it from V. Any point inside the edge keeps the surface a closed, embedded
+  /// manifold (triangles(): each tetrahedron's piece stays a disk in it, and two neighbours
+  /// share the vertices on their common edges); on the level of phi rather than of its
+  /// interpolant, the vertices sit where the certificate wants them, and the cells can be
+  /// larger where phi is far from linear (about the cutters' rims).
+  void place_vertices(const std::vector<Leaf*>& dirty) {
     std::vector<EdgeKey> todo;
     for (const Leaf* L : dirty)
       for (const Tri& t : L->tris)
@@ -339,17 +291,65 @@ class Mesher {
     std::sort(todo.begin(), todo.end());
     todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
     std::vector<Bound> b(todo.size());
-    tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t i) {
-      const Eigen::Vector3d x = on_edge(todo[i]);
-      b[i].d = tree_.query(x, 0, value_.at(todo[i].a).node);
-      const Eigen::Matrix4d f = motion_.frame(b[i].d.t);
-      const Eigen::Matrix3d R = f.block<3, 3>(1, 1);
-      Eigen::Vector3d g;
-      sweep::signed_distance(tree_.body(), R.transpose() * (x - f.block<3, 1>(1, 0)), g);
-      b[i].n = R * g;
-    });
-    queries_ += todo.size();
-    for (std::size_t i = 0; i < todo.size(); ++i) bound_.emplace(todo[i], b[i]);
+    std::vector<int> asked(todo.size());
+    tbb::parallel_for(std::size_t(0), todo.size(),
+                      [&](std::size_t i) { asked[i] = place(todo[i], b[i]); });
+    for (std::size_t i = 0; i < todo.size(); ++i) {
+      queries_ += static_cast<std::size_t>(asked[i]);
+      bound_.emplace(todo[i], b[i]);
+    }
+  }
+
+  /// place_vertices for one edge; returns the queries it took.
+  int place(const EdgeKey& e, Bound& out) const {
+    const Value& A = value_.at(e.a);
+    const Value& B = value_.at(e.b);
+    const Eigen::Vector3d pa = octree_.position(Octree::vertex_point(e.a)),
+                          pb = octree_.position(Octree::vertex_point(e.b));
+    // f(s) = phi(pa + s (pb - pa)) - tau, of opposite signs at the ends.
+    double s0 = 0, f0 = A.v - tau_, s1 = 1, f1 = B.v - tau_;
+    int side = 0, asked = 0;
+    double best = HUGE_VAL;
+    for (;;) {
+      const double s = std::clamp(s0 - f0 * (s1 - s0) / (f1 - f0), 0.0, 1.0);
+      const Eigen::Vector3d x = pa + s * (pb - pa);
+      // A point above tau + T is no vertex; there only the sign of f is needed (query()).
+      const double above = tau_ + T_ + 2 * tree_.largest_leaf_delta();
+      const sweep::VolumeDistance d = tree_.query(x, 0, A.node, above);
+      ++asked;
+      const double f = std::min(d.signed_upper, above) - tau_;
+      if (std::abs(f) < best) {
+        best = std::abs(f);
+        out.x = x;
+        out.d = d;
+      }
+      if (best <= kLevelSlack * T_ || asked == kPlaceQueries) break;
+      if ((f < 0) == (f0 < 0)) {
+        s0 = s, f0 = f;
+        if (side == -1) f1 /= 2;
+        side = -1;
+      } else {
+        s1 = s, f1 = f;
+        if (side == 1) f0 /= 2;
+        side = 1;
+      }
+    }
+    if (!(out.d.signed_upper < HUGE_VAL)) return asked;  // no vertex: its cell is split
+    const Eigen::Matrix4d fr = motion_.frame(out.d.t);
+    const Eigen::Matrix3d R = fr.block<3, 3>(1, 1);
+    const Eigen::Vector3d local = R.transpose() * (out.x - fr.block<3, 1>(1, 0));
+    Eigen::Vector3d g = Eigen::Vector3d::Zero(), near;
+    const auto& index = tree_.body().index;
+    // A mesh's nearest triangle lies within the distance the query found: searched only
+    // that far (the direction is a hint for the certificate, not a part of it).
+    const double cap = std::abs(out.d.signed_upper) * (1 + 1e-6) + 1e-9 * scale_;
+    if (const double d = index ? index->signed_distance(local, &near, cap) : HUGE_VAL;
+        d < HUGE_VAL && std::abs(d) > 0)
+      g = (local - near) / d;
+    else
+      sweep::signed_distance(tree_.body(), local, g);
+    out.n = R * g;
+    return asked;
   }
 
   /// A leaf passes when every vertex of its triangles is within T (less the rounding e) and
@@ -469,10 +469,6 @@ class Mesher {
   };
   std::unordered_map<OctKey, Value> value_;
   std::map<OctKey, Leaf> leaves_;
-  struct Bound {
-    sweep::VolumeDistance d;
-    Eigen::Vector3d n = Eigen::Vector3d::Zero();
-  };
   std::unordered_map<EdgeKey, Bound, EdgeHash> bound_;
   double deep_volume_ = 0;
   std::size_t queries_ = 0;

@@ -115,6 +115,19 @@ TEST_P(TreeBounds, BracketTheMeasuredDistance) {
       EXPECT_EQ(guessed.signed_upper, full.signed_upper);
       EXPECT_LE(guessed.lower, f + eps);
       EXPECT_GE(guessed.lower, f - leaf - slop);
+      // With stop_above at f (about half of these points lie above it, half below): a
+      // placement below it, the best's distance; else nothing below it and a lower bound
+      // within a leaf's Delta of it, still below f.
+      const double above = f + (i % 2 ? 0.5 : -0.5) * T;
+      const auto capped = tree.query(x, -HUGE_VAL, hint, above);
+      EXPECT_LE(capped.lower, f + eps);
+      if (capped.signed_upper < above) {
+        EXPECT_GE(std::max(capped.signed_upper, 0.0), f - eps);
+        EXPECT_NEAR(tree.node_distance(x, capped.node), capped.signed_upper, eps);
+      } else {
+        EXPECT_GE(capped.lower, above - tree.largest_leaf_delta() - eps);
+        EXPECT_LT(above, f + leaf + eps);  // a placement below it would have been found
+      }
       outside += f > 0;
     }
   }

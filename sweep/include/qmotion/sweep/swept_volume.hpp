@@ -121,16 +121,24 @@ class SweptVolumeTree {
   /// likely near the best (a neighbouring point's), is measured first: the search is
   /// shorter, its best placement the same (every node that could do better is still
   /// opened; with stop_below, the first found below it), and `lower` still a lower bound.
-  VolumeDistance query(const Eigen::Vector3d& q, double stop_below = 0, int hint = -1) const {
+  /// With stop_above, nodes whose lower bound reaches it are not opened either, and a mesh
+  /// body's distances are searched only that far: unless signed_upper < stop_above, it is
+  /// only known that f(q) >= lower >= stop_above - largest_leaf_delta() (a leaf is closed
+  /// at its distance less its Delta; signed_upper is a placement's or HUGE_VAL). That is
+  /// all a caller needs that asks whether f(q) is below a level well under stop_above.
+  VolumeDistance query(const Eigen::Vector3d& q, double stop_below = 0, int hint = -1,
+                       double stop_above = HUGE_VAL) const {
     VolumeDistance out;
     out.lower = HUGE_VAL;
     thread_local std::vector<std::pair<int, double>> stack;  // node, its parent's bound
     stack.clear();
-    double best = HUGE_VAL;  // the smallest upper bound so far (signed)
+    double best = HUGE_VAL;   // the smallest upper bound so far (signed)
+    double bar = stop_above;  // min(best, stop_above): what a node must beat to be opened
     if (hint >= 0 && static_cast<std::size_t>(hint) < nodes_.size()) {
       best = node_distance(q, hint);
       out.signed_upper = best;
       found_at(out, hint);
+      bar = std::min(best, stop_above);
       if (best < stop_below) {
         out.lower = 0;
         return out;
@@ -141,20 +149,22 @@ class SweptVolumeTree {
       const auto [i, parent_lb] = stack.back();
       stack.pop_back();
       const Node& n = nodes_[i];
-      if (parent_lb >= best) {  // the parent's bound already says no
+      if (parent_lb >= bar) {  // the parent's bound already says no
         out.lower = std::min(out.lower, parent_lb);
         continue;
       }
       // A cheap bound from the bounding ball, then the body itself.
       const double ball = (q - n.centre).norm() - ball_radius_ - n.delta;
-      if (ball >= best) {
+      if (ball >= bar) {
         out.lower = std::min(out.lower, ball);
         continue;
       }
-      const double sd = capped_distance(n.Rt * (q - n.p), best + n.delta);
+      bool capped = false;
+      const double sd = capped_distance(n.Rt * (q - n.p), bar + n.delta, &capped);
       const double lb = std::max(ball, sd - n.delta);
-      if (sd < best) {
+      if (!capped && sd < best) {
         best = sd;
+        bar = std::min(best, stop_above);
         out.signed_upper = sd;
         found_at(out, i);
       }
@@ -162,7 +172,7 @@ class SweptVolumeTree {
         out.lower = 0;
         return out;
       }
-      if (n.child[0] < 0 || lb >= best) {
+      if (n.child[0] < 0 || lb >= bar) {
         out.lower = std::min(out.lower, lb);
         continue;
       }
@@ -202,11 +212,14 @@ class SweptVolumeTree {
   /// The body's signed distance at a local point, or, for a mesh, cap when it is certainly
   /// at least cap (> 0): no triangle lies nearer than cap and the point is outside the
   /// mesh's box. A query needs no more of a node whose distance reaches best + Delta.
-  double capped_distance(const Eigen::Vector3d& local, double cap) const {
+  double capped_distance(const Eigen::Vector3d& local, double cap, bool* capped) const {
     if (!body_.index || !(cap > 0) || !(cap < HUGE_VAL)) return signed_distance(body_, local);
     const double d = body_.index->signed_distance(local, nullptr, cap);
     if (d < HUGE_VAL) return d;
-    if (mesh_box_.exteriorDistance(local) > 0) return cap;
+    if (mesh_box_.exteriorDistance(local) > 0) {
+      *capped = true;  // a lower bound, not a placement's distance
+      return cap;
+    }
     return signed_distance(body_, local);
   }
 
