@@ -180,7 +180,7 @@ class Mesher {
       octree_.cell(todo[i]).node = node[i];
       if (kind[i] == Octree::Kind::deep) {
         const double s = static_cast<double>(Octree::size(Octree::level(todo[i]))) * octree_.unit();
-        deep_volume_ += s * s * s;
+        deep_volume_ = kernel::down(deep_volume_ + kernel::down(kernel::down(s * s) * s));
       }
     }
   }
@@ -267,7 +267,7 @@ class Mesher {
       }
       Eigen::Vector3d p[4];
       for (int i = 0; i < 4; ++i) p[i] = octree_.position(t[static_cast<std::size_t>(i)]);
-      L.inside += inside_part(p, v, at, tree_, scale_);
+      L.inside = kernel::down(L.inside + inside_part(p, v, at, tree_, scale_));
       march(t, k, v, tau_, out);
     }
     return out;
@@ -411,7 +411,7 @@ class Mesher {
     for (const auto& [k, L] : leaves_) {
       for (const Tri& t : L.tris)
         out.triangles.push_back({number(t[0]), number(t[1]), number(t[2])});
-      out.inside_volume += L.inside;
+      out.inside_volume = kernel::down(out.inside_volume + L.inside);
       if (L.tris.empty()) continue;
       const double s = static_cast<double>(Octree::size(Octree::level(k))) * octree_.unit();
       out.smallest_cell = std::min(out.smallest_cell, s);
@@ -424,7 +424,7 @@ class Mesher {
       throw Error(Errc::numerical_failure,
                   "volume: the adaptive mesh found no point of the volume (a body too small "
                   "for the scene?)");
-    out.inside_volume += deep_volume_;
+    out.inside_volume = kernel::down(out.inside_volume + deep_volume_);
     out.queries = queries_;
     out.pieces = hulls_.size();
     out.level = tau_;

@@ -5,6 +5,7 @@
 #include <array>
 #include <optional>
 #include <qmotion/api/volume.hpp>
+#include <qmotion/kernel/outward.hpp>
 #include <qmotion/motion.hpp>
 #include <qmotion/sweep/body.hpp>
 #include <qmotion/sweep/swept_volume.hpp>
@@ -25,8 +26,8 @@ struct EnclosingMesh {
   /// Each vertex's bound: the placement the tree's search found for it (signed_upper).
   std::vector<sweep::VolumeDistance> at;
   double distance_bound = 0;
-  double enclosed = 0;       ///< the volume inside the mesh before rounding
-  double inside_volume = 0;  ///< of cells or tetrahedra certified inside V
+  kernel::Interval enclosed;  ///< the volume inside the mesh before rounding
+  double inside_volume = 0;   ///< of cells or tetrahedra certified inside V (rounded down)
   double rounding = 0, level = 0;
   double smallest_cell = 0, largest_cell = 0;  ///< edges of the cells the surface crosses
   bool closed = false;
@@ -44,9 +45,11 @@ EnclosingMesh adaptive_mesh(const Motion& motion, const sweep::SweptVolumeTree& 
 /// work, on the sampled box).
 void refuse_octree(const Motion& motion, const Eigen::AlignedBox3d& box, double T);
 
-/// The volume inside a closed, outward-oriented mesh (the divergence theorem about `o`).
-double enclosed_volume(const std::vector<Eigen::Vector3d>& vertices,
-                       const std::vector<std::array<int, 3>>& triangles, const Eigen::Vector3d& o);
+/// The volume inside a closed, outward-oriented mesh (the divergence theorem about `o`),
+/// rounded outward: the exact volume of the mesh with these vertices lies in it.
+kernel::Interval enclosed_volume(const std::vector<Eigen::Vector3d>& vertices,
+                                 const std::vector<std::array<int, 3>>& triangles,
+                                 const Eigen::Vector3d& o);
 
 /// Errc::invalid_input: float32 rounding by e is too coarse for the tolerance T.
 [[noreturn]] void refuse_float32(const Motion& motion, double e, double T,

@@ -66,12 +66,24 @@ Eigen::AlignedBox3d sampled_box(const Motion& m, const sweep::Body& body) {
   return box;
 }
 
-double enclosed_volume(const std::vector<Eigen::Vector3d>& vertices,
-                       const std::vector<std::array<int, 3>>& triangles, const Eigen::Vector3d& o) {
-  double v = 0;
-  for (const auto& t : triangles)
-    v += (vertices[t[0]] - o).dot((vertices[t[1]] - o).cross(vertices[t[2]] - o));
-  return v / 6;
+kernel::Interval enclosed_volume(const std::vector<Eigen::Vector3d>& vertices,
+                                 const std::vector<std::array<int, 3>>& triangles,
+                                 const Eigen::Vector3d& o) {
+  using kernel::Interval;
+  // Sums of the triangles' determinants in intervals: terms of either sign cancel, and over
+  // 10^7 of them a fixed relative margin would not be a bound.
+  Interval v(0.0);
+  for (const auto& t : triangles) {
+    Interval p[3][3];
+    for (int k = 0; k < 3; ++k)
+      for (int a = 0; a < 3; ++a)
+        p[k][a] = Interval(vertices[static_cast<std::size_t>(t[static_cast<std::size_t>(k)])](a)) -
+                  Interval(o(a));
+    v += p[0][0] * (p[1][1] * p[2][2] - p[1][2] * p[2][1]) -
+         p[0][1] * (p[1][0] * p[2][2] - p[1][2] * p[2][0]) +
+         p[0][2] * (p[1][0] * p[2][1] - p[1][1] * p[2][0]);
+  }
+  return v / Interval(6.0);
 }
 
 void refuse_float32(const Motion& motion, double e, double T, const VolumeRounding& rounding) {
@@ -130,7 +142,7 @@ SweptVolume swept_volume(const Motion& motion, const sweep::Body& body, std::opt
   out.measured_vertices = measured.size();
   out.rounding = m.rounding;
   out.closed = m.closed;
-  out.volume_upper = m.enclosed * (1 + 1e-9);
+  out.volume_upper = m.enclosed.hi;
   // V holds the body at every placement, so its volume is at least the body's: for a mesh,
   // the divergence sum over its triangles (the tetrahedra about the box's centre are what a
   // thin body's octree cannot certify).
@@ -139,9 +151,9 @@ SweptVolume swept_volume(const Motion& motion, const sweep::Body& body, std::opt
     Eigen::AlignedBox3d own;
     for (const auto& x : body.mesh.vertices) own.extend(x);
     lower = std::max(
-        lower, detail::enclosed_volume(body.mesh.vertices, body.mesh.triangles, own.center()));
+        lower, detail::enclosed_volume(body.mesh.vertices, body.mesh.triangles, own.center()).lo);
   }
-  out.volume_lower = std::min(lower * (1 - 1e-9), out.volume_upper);
+  out.volume_lower = std::min(lower, out.volume_upper);
   out.vertices = std::move(m.vertices);
   out.triangles = std::move(m.triangles);
   out.distance_queries = m.queries;

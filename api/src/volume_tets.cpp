@@ -2,7 +2,9 @@
 #include "volume_tets.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <qmotion/kernel/outward.hpp>
 #include <qmotion/sweep/swept_volume.hpp>
 
 namespace qmotion::detail {
@@ -10,9 +12,8 @@ namespace {
 
 /// inside_part's two tests of the whole tetrahedron p (all corners inside; `centre`, its
 /// circumcentre less p[0]).
-bool whole_inside(const Eigen::Vector3d* p, const Eigen::Vector3d& centre, const double* v,
-                  const double* at, const sweep::SweptVolumeTree& tree, double scale) {
-  const double R = centre.norm() * (1 + 1e-9);
+bool whole_inside(const Eigen::Vector3d* p, double R, const double* v, const double* at,
+                  const sweep::SweptVolumeTree& tree, double scale) {
   bool balls = true;
   for (int i = 0; i < 4; ++i) balls = balls && -v[i] >= R;
   if (balls) return true;
@@ -25,6 +26,22 @@ bool whole_inside(const Eigen::Vector3d* p, const Eigen::Vector3d& centre, const
     if (in_one) return true;
   }
   return false;
+}
+
+using kernel::Interval;
+using IVec = std::array<Interval, 3>;
+
+IVec minus(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return {Interval(a.x()) - Interval(b.x()), Interval(a.y()) - Interval(b.y()),
+          Interval(a.z()) - Interval(b.z())};
+}
+IVec cross(const IVec& a, const IVec& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+Interval dot(const IVec& a, const IVec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+/// An upper bound of the largest length in the interval vector.
+double length_up(const IVec& a) {
+  return kernel::sqrt(kernel::square(a[0]) + kernel::square(a[1]) + kernel::square(a[2])).hi;
 }
 
 }  // namespace
@@ -85,27 +102,37 @@ void march(const Octree::Tet& t, const OctKey* k, const double* v, double tau,
 /// longest edge from it). Copies about two corners with s at most 1/2 each do not overlap.
 double inside_part(const Eigen::Vector3d* p, const double* v, const double* at,
                    const sweep::SweptVolumeTree& tree, double scale) {
-  Eigen::Matrix3d A;
-  Eigen::Vector3d b;
-  for (int i = 0; i < 3; ++i) {
-    A.row(i) = (p[i + 1] - p[0]).transpose();
-    b(i) = 0.5 * (p[i + 1] - p[0]).squaredNorm();
-  }
-  const double det = A.determinant(), whole = std::abs(det) / 6;
+  // Rounded outward (kernel/outward.hpp): the volume down, the lengths it is measured
+  // against up.
+  const IVec a[3] = {minus(p[1], p[0]), minus(p[2], p[0]), minus(p[3], p[0])};
+  const IVec c12 = cross(a[1], a[2]), c20 = cross(a[2], a[0]), c01 = cross(a[0], a[1]);
+  const Interval det = dot(a[0], c12), whole_in = kernel::abs(det) / Interval(6.0);
+  const double whole = whole_in.lo;
   if (!(whole > 0)) return 0;
   bool all_in = true;
   for (int i = 0; i < 4; ++i) all_in = all_in && v[i] < 0;
-  if (all_in && whole_inside(p, A.inverse() * b, v, at, tree, scale)) return whole;
+  if (all_in) {
+    // The circumcentre less p[0]: (|a0|^2 a1 x a2 + |a1|^2 a2 x a0 + |a2|^2 a0 x a1) / 2 det.
+    const Interval twice = det * Interval(2.0);
+    IVec centre;
+    for (int k = 0; k < 3; ++k)
+      centre[static_cast<std::size_t>(k)] = (dot(a[0], a[0]) * c12[static_cast<std::size_t>(k)] +
+                                             dot(a[1], a[1]) * c20[static_cast<std::size_t>(k)] +
+                                             dot(a[2], a[2]) * c01[static_cast<std::size_t>(k)]) /
+                                            twice;
+    if (whole_inside(p, length_up(centre), v, at, tree, scale)) return whole;
+  }
   double part = 0;
   for (int i = 0; i < 4; ++i) {
     if (!(v[i] < 0)) continue;
     double L = 0;
-    for (int j = 0; j < 4; ++j) L = std::max(L, (p[j] - p[i]).norm());
-    const double s = -v[i] / (L * (1 + 1e-9));
+    for (int j = 0; j < 4; ++j) L = std::max(L, length_up(minus(p[j], p[i])));
+    const double s = kernel::down(-v[i] / L);
     if (s >= 1) return whole;
-    part += std::pow(std::min(s, 0.5), 3);
+    const double h = std::min(s, 0.5);
+    part = kernel::down(part + kernel::down(kernel::down(h * h) * h));
   }
-  return whole * part;
+  return kernel::down(whole * part);
 }
 
 }  // namespace qmotion::detail
