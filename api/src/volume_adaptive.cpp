@@ -265,9 +265,11 @@ class Mesher {
         v[i] = x.v;
         at[i] = x.t;
       }
-      Eigen::Vector3d p[4];
-      for (int i = 0; i < 4; ++i) p[i] = octree_.position(t[static_cast<std::size_t>(i)]);
-      L.inside = kernel::down(L.inside + inside_part(p, v, at, tree_, scale_));
+      if (std::min({v[0], v[1], v[2], v[3]}) < 0) {  // else no part of it is known in V
+        Eigen::Vector3d p[4];
+        for (int i = 0; i < 4; ++i) p[i] = octree_.position(t[static_cast<std::size_t>(i)]);
+        L.inside = kernel::down(L.inside + inside_part(p, v, at, tree_, scale_));
+      }
       march(t, k, v, tau_, out);
     }
     return out;
@@ -338,16 +340,11 @@ class Mesher {
     const Eigen::Matrix4d fr = motion_.frame(out.d.t);
     const Eigen::Matrix3d R = fr.block<3, 3>(1, 1);
     const Eigen::Vector3d local = R.transpose() * (out.x - fr.block<3, 1>(1, 0));
-    Eigen::Vector3d g = Eigen::Vector3d::Zero(), near;
-    const auto& index = tree_.body().index;
+    Eigen::Vector3d g;
     // A mesh's nearest triangle lies within the distance the query found: searched only
     // that far (the direction is a hint for the certificate, not a part of it).
-    const double cap = std::abs(out.d.signed_upper) * (1 + 1e-6) + 1e-9 * scale_;
-    if (const double d = index ? index->signed_distance(local, &near, cap) : HUGE_VAL;
-        d < HUGE_VAL && std::abs(d) > 0)
-      g = (local - near) / d;
-    else
-      sweep::signed_distance(tree_.body(), local, g);
+    sweep::signed_distance(tree_.body(), local, g,
+                           std::abs(out.d.signed_upper) * (1 + 1e-6) + 1e-9 * scale_);
     out.n = R * g;
     return asked;
   }

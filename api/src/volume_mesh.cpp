@@ -69,21 +69,17 @@ Eigen::AlignedBox3d sampled_box(const Motion& m, const sweep::Body& body) {
 kernel::Interval enclosed_volume(const std::vector<Eigen::Vector3d>& vertices,
                                  const std::vector<std::array<int, 3>>& triangles,
                                  const Eigen::Vector3d& o) {
-  using kernel::Interval;
   // Sums of the triangles' determinants in intervals: terms of either sign cancel, and over
   // 10^7 of them a fixed relative margin would not be a bound.
-  Interval v(0.0);
+  kernel::Interval v(0.0);
   for (const auto& t : triangles) {
-    Interval p[3][3];
-    for (int k = 0; k < 3; ++k)
-      for (int a = 0; a < 3; ++a)
-        p[k][a] = Interval(vertices[static_cast<std::size_t>(t[static_cast<std::size_t>(k)])](a)) -
-                  Interval(o(a));
-    v += p[0][0] * (p[1][1] * p[2][2] - p[1][2] * p[2][1]) -
-         p[0][1] * (p[1][0] * p[2][2] - p[1][2] * p[2][0]) +
-         p[0][2] * (p[1][0] * p[2][1] - p[1][1] * p[2][0]);
+    auto at = [&](int k) {
+      return kernel::difference(vertices[static_cast<std::size_t>(t[static_cast<std::size_t>(k)])],
+                                o);
+    };
+    v += kernel::dot(at(0), kernel::cross(at(1), at(2)));
   }
-  return v / Interval(6.0);
+  return v / kernel::Interval(6.0);
 }
 
 void refuse_float32(const Motion& motion, double e, double T, const VolumeRounding& rounding) {

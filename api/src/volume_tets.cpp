@@ -29,20 +29,7 @@ bool whole_inside(const Eigen::Vector3d* p, double R, const double* v, const dou
 }
 
 using kernel::Interval;
-using IVec = std::array<Interval, 3>;
-
-IVec minus(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  return {Interval(a.x()) - Interval(b.x()), Interval(a.y()) - Interval(b.y()),
-          Interval(a.z()) - Interval(b.z())};
-}
-IVec cross(const IVec& a, const IVec& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-Interval dot(const IVec& a, const IVec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-/// An upper bound of the largest length in the interval vector.
-double length_up(const IVec& a) {
-  return kernel::sqrt(kernel::square(a[0]) + kernel::square(a[1]) + kernel::square(a[2])).hi;
-}
+using kernel::Interval3;
 
 }  // namespace
 
@@ -104,9 +91,11 @@ double inside_part(const Eigen::Vector3d* p, const double* v, const double* at,
                    const sweep::SweptVolumeTree& tree, double scale) {
   // Rounded outward (kernel/outward.hpp): the volume down, the lengths it is measured
   // against up.
-  const IVec a[3] = {minus(p[1], p[0]), minus(p[2], p[0]), minus(p[3], p[0])};
-  const IVec c12 = cross(a[1], a[2]), c20 = cross(a[2], a[0]), c01 = cross(a[0], a[1]);
-  const Interval det = dot(a[0], c12), whole_in = kernel::abs(det) / Interval(6.0);
+  const Interval3 a[3] = {kernel::difference(p[1], p[0]), kernel::difference(p[2], p[0]),
+                          kernel::difference(p[3], p[0])};
+  const Interval3 c12 = kernel::cross(a[1], a[2]), c20 = kernel::cross(a[2], a[0]),
+                  c01 = kernel::cross(a[0], a[1]);
+  const Interval det = kernel::dot(a[0], c12), whole_in = kernel::abs(det) / Interval(6.0);
   const double whole = whole_in.lo;
   if (!(whole > 0)) return 0;
   bool all_in = true;
@@ -114,19 +103,20 @@ double inside_part(const Eigen::Vector3d* p, const double* v, const double* at,
   if (all_in) {
     // The circumcentre less p[0]: (|a0|^2 a1 x a2 + |a1|^2 a2 x a0 + |a2|^2 a0 x a1) / 2 det.
     const Interval twice = det * Interval(2.0);
-    IVec centre;
+    Interval3 centre;
     for (int k = 0; k < 3; ++k)
-      centre[static_cast<std::size_t>(k)] = (dot(a[0], a[0]) * c12[static_cast<std::size_t>(k)] +
-                                             dot(a[1], a[1]) * c20[static_cast<std::size_t>(k)] +
-                                             dot(a[2], a[2]) * c01[static_cast<std::size_t>(k)]) /
-                                            twice;
-    if (whole_inside(p, length_up(centre), v, at, tree, scale)) return whole;
+      centre[static_cast<std::size_t>(k)] =
+          (kernel::dot(a[0], a[0]) * c12[static_cast<std::size_t>(k)] +
+           kernel::dot(a[1], a[1]) * c20[static_cast<std::size_t>(k)] +
+           kernel::dot(a[2], a[2]) * c01[static_cast<std::size_t>(k)]) /
+          twice;
+    if (whole_inside(p, kernel::norm_up(centre), v, at, tree, scale)) return whole;
   }
   double part = 0;
   for (int i = 0; i < 4; ++i) {
     if (!(v[i] < 0)) continue;
     double L = 0;
-    for (int j = 0; j < 4; ++j) L = std::max(L, length_up(minus(p[j], p[i])));
+    for (int j = 0; j < 4; ++j) L = std::max(L, kernel::norm_up(kernel::difference(p[j], p[i])));
     const double s = kernel::down(-v[i] / L);
     if (s >= 1) return whole;
     const double h = std::min(s, 0.5);

@@ -79,7 +79,8 @@ TEST(Outward, NormUpIsAnUpperBoundOfTheExactNorm) {
   for (int k = 0; k < 100000; ++k) {
     const Eigen::Vector3d v(random_double(g), random_double(g), random_double(g));
     const Q sq = Q(v.x()) * Q(v.x()) + Q(v.y()) * Q(v.y()) + Q(v.z()) * Q(v.z());
-    const double up = qmotion::kernel::norm_up(v);
+    const double up =
+        qmotion::kernel::norm_up(qmotion::kernel::difference(v, Eigen::Vector3d::Zero()));
     ASSERT_GE(Q(up) * Q(up), sq) << v.transpose();
     understated += Q(v.norm()) * Q(v.norm()) < sq;
   }

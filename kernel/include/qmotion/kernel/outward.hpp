@@ -9,7 +9,9 @@
 // the exact operation on every pair of points of its operands. up() and down() are the same
 // step for a single operation whose sign is known.
 #pragma once
+#include <Eigen/Core>
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace qmotion::kernel {
@@ -27,8 +29,6 @@ struct Interval {
   /// The exact double x.
   Interval(double x) : lo(x), hi(x) {}  // NOLINT: an exact double is an interval
   Interval(double l, double h) : lo(l), hi(h) {}
-
-  bool contains(double x) const { return lo <= x && x <= hi; }
 };
 
 inline Interval operator+(const Interval& a, const Interval& b) {
@@ -49,7 +49,6 @@ inline Interval operator/(const Interval& a, const Interval& b) {
   return {down(*std::min_element(p, p + 4)), up(*std::max_element(p, p + 4))};
 }
 inline Interval& operator+=(Interval& a, const Interval& b) { return a = a + b; }
-inline Interval& operator*=(Interval& a, const Interval& b) { return a = a * b; }
 
 /// The square root of the interval's non-negative part.
 inline Interval sqrt(const Interval& a) {
@@ -61,20 +60,27 @@ inline Interval abs(const Interval& a) {
   if (a.hi <= 0) return -a;
   return {0.0, std::max(-a.lo, a.hi)};
 }
-inline Interval max(const Interval& a, const Interval& b) {
-  return {std::max(a.lo, b.lo), std::max(a.hi, b.hi)};
-}
 inline Interval square(const Interval& a) {
   const Interval m = abs(a);
   return {m.lo == 0 ? 0.0 : down(m.lo * m.lo), up(m.hi * m.hi)};
 }
 
-/// An upper bound of the Euclidean norm of the exact vector v (its components doubles).
-template <typename Vector>
-double norm_up(const Vector& v) {
-  Interval s(0.0);
-  for (int i = 0; i < static_cast<int>(v.size()); ++i) s += square(Interval(double(v(i))));
-  return sqrt(s).hi;
+/// A vector of three intervals, and the operations on it that the certificates use.
+using Interval3 = std::array<Interval, 3>;
+/// a - b, exactly held.
+inline Interval3 difference(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return {Interval(a.x()) - Interval(b.x()), Interval(a.y()) - Interval(b.y()),
+          Interval(a.z()) - Interval(b.z())};
+}
+inline Interval3 cross(const Interval3& a, const Interval3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+inline Interval dot(const Interval3& a, const Interval3& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+/// An upper bound of the Euclidean norm of every vector in v.
+inline double norm_up(const Interval3& v) {
+  return sqrt(square(v[0]) + square(v[1]) + square(v[2])).hi;
 }
 
 /// A relative margin: x (>= 0) times (1 + r), rounded up, for a bound whose own rounding is

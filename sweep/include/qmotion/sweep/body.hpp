@@ -343,7 +343,10 @@ inline bool is_convex(const Body& body) { return body.kind != Body::Kind::mesh; 
 /// convex function. g is the unit vector from the nearest point outside, the outward normal
 /// of the nearest face (or supporting plane) inside, and 0 where every direction is a
 /// subgradient's (the centre of a sphere, the axis of a revolved body). Up to rounding.
-inline double signed_distance(const Body& body, const Eigen::Vector3d& x, Eigen::Vector3d& g) {
+/// `near_within`, when the caller knows the distance is below it, lets a mesh search only
+/// that far (and all of it when it was wrong).
+inline double signed_distance(const Body& body, const Eigen::Vector3d& x, Eigen::Vector3d& g,
+                              double near_within = HUGE_VAL) {
   using K = Body::Kind;
   g.setZero();
   switch (body.kind) {
@@ -392,7 +395,8 @@ inline double signed_distance(const Body& body, const Eigen::Vector3d& x, Eigen:
       // direction to try, not a subgradient.
       if (!body.index) return signed_distance(body, x);
       Eigen::Vector3d near;
-      const double d = body.index->signed_distance(x, &near);
+      double d = body.index->signed_distance(x, &near, near_within);
+      if (!(d < HUGE_VAL)) d = body.index->signed_distance(x, &near);
       if (std::abs(d) > 0 && std::isfinite(d)) g = (x - near) / d;
       return d;
     }
