@@ -89,6 +89,7 @@ Command add_plot(CLI::App& app);
 Command add_animate(CLI::App& app);
 Command add_view(CLI::App& app);
 Command add_volume(CLI::App& app);
+Command add_verify(CLI::App& app);
 
 /// Runs the qmotion command line; returns the exit status of docs/formats.md. Throws
 /// qmotion::Error for user-facing failures (main maps them to their exit status).

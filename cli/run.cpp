@@ -34,7 +34,7 @@ int run(int argc, char** argv) {
       add_info(app),       add_eval(app),     add_interpolate(app), add_fit(app),  add_poses(app),
       add_trajectory(app), add_sweep(app),    add_check(app),       add_demo(app), add_qspline(app),
       add_compare(app),    add_toolpath(app), add_render(app),      add_plot(app), add_animate(app),
-      add_view(app),       add_volume(app)};
+      add_view(app),       add_volume(app),   add_verify(app)};
   for (const auto& c : commands) c.app->fallthrough();  // --quiet after the command too
   try {
     app.parse(argc, argv);

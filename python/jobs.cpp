@@ -1,5 +1,5 @@
 // python/jobs.cpp: the job as calls on a Motion: trajectory, sweep, export, check, toolpath,
-// and demo, compare and check_exact.
+// and demo, compare and check_exact; verify, on a machining program.
 #include "convert.hpp"
 
 namespace qmotion::python {
@@ -251,11 +251,36 @@ void bind_output_jobs(py::module_& m) {
 #endif
 }
 
+/// verify: what a machining program does to a part.
+void bind_cam_jobs(py::module_& m) {
+  m.def(
+      "verify",
+      [](const std::string& program, const std::string& tool, const std::string& part,
+         const py::object& tol, const std::string& output) {
+        VerifyOptions o;
+        o.program = program;
+        o.tool = tool;
+        o.part = part;
+        if (!tol.is_none()) o.tol = tol.cast<double>();
+        o.output = output;
+        return to_python(verify(o).report());
+      },
+      py::arg("program"), py::arg("tool"), py::arg("part"), py::arg("tol") = py::none(),
+      py::arg("output") = "",
+      "`qmotion verify`: whether a 3-axis G-code program (.ngc, .nc, .gcode, .tap, .cnc) "
+      "gouges part (a closed .stl/.obj/.ply mesh, mm) with tool (cutter:flat|ball,D,L or "
+      "cutter:bull,D,rc,L), certified at every instant of every move to within tol (mm, "
+      "default 0.01); output: a .json file for the report too. Returns the report dict: "
+      "gouge (depth [lower, upper], within_tolerance, never_touches, deepest, moves), "
+      "collisions (rapids_through_part), moves, tolerance, ...");
+}
+
 }  // namespace
 
 void bind_jobs(py::module_& m) {
   bind_geometry_jobs(m);
   bind_output_jobs(m);
+  bind_cam_jobs(m);
 }
 
 }  // namespace qmotion::python

@@ -24,7 +24,7 @@ import sys
 
 PROGRAMS = ["bench_kernel", "bench_interpolation", "bench_spline", "bench_qspline",
             "bench_sweep", "bench_toolpath", "bench_io", "bench_fit", "bench_keyframes",
-            "bench_volume"]
+            "bench_volume", "bench_verify"]
 
 # (qmotion's benchmark, the peer beside it, what both do); matched argument for argument.
 PEERS = [

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <map>
 #include <optional>
@@ -57,6 +58,60 @@ inline std::optional<std::vector<std::array<double, 6>>> rs274_moves(const std::
   }
   EXPECT_EQ(log.find("error"), std::string::npos) << log;
   return moves;
+}
+
+/// A canonical move as rs274 prints it: STRAIGHT_TRAVERSE, STRAIGHT_FEED (6 numbers: the
+/// end's x, y, z, a, b, c) or ARC_FEED (9: the end in the plane, the centre in it, the
+/// rotation, the end along the normal, a, b, c), with the plane (17, 18, 19) and the length
+/// unit (mm per unit: 1 or 25.4) in force when it was printed.
+struct CanonMove {
+  std::string kind;
+  std::vector<double> v;
+  int plane = 17;
+  double unit = 1;
+};
+
+/// Every canonical move of rs274's output `log`.
+inline std::vector<CanonMove> canonical_moves(const std::string& log) {
+  std::vector<CanonMove> out;
+  int plane = 17;
+  double unit = 1;
+  std::istringstream in(log);
+  for (std::string line; std::getline(in, line);) {
+    if (line.find("SELECT_PLANE(CANON_PLANE_") != std::string::npos)
+      plane = line.find("_XZ)") != std::string::npos   ? 18
+              : line.find("_YZ)") != std::string::npos ? 19
+                                                       : 17;
+    if (line.find("USE_LENGTH_UNITS(") != std::string::npos)
+      unit = line.find("INCHES") != std::string::npos ? 25.4 : 1.0;
+    for (const char* kind : {"STRAIGHT_TRAVERSE(", "STRAIGHT_FEED(", "ARC_FEED("}) {
+      const auto p = line.find(kind);
+      if (p == std::string::npos) continue;
+      CanonMove m{std::string(kind, std::strlen(kind) - 1), {}, plane, unit};
+      std::istringstream args(line.substr(p + std::strlen(kind)));
+      for (std::string a; std::getline(args, a, ',');) m.v.push_back(std::stod(a));
+      out.push_back(m);
+    }
+  }
+  return out;
+}
+
+/// rs274's output for a G-code file, or nothing when real clients are off (RS274_OR_SKIP)
+/// or, a failure, when rs274 is missing.
+inline std::optional<std::string> rs274_log(const std::string& ngc) {
+  if (!QMOTION_REAL_CLIENTS) return std::nullopt;
+  const char* env = std::getenv("QMOTION_RS274");
+  const std::string exe = env ? env : "/usr/bin/rs274";
+  if (!fs::exists(exe)) {
+    ADD_FAILURE() << exe << " not found: LinuxCNC's rs274 is required (scripts/install-deps.sh "
+                  << "--test), or configure with -DQMOTION_REAL_CLIENTS=OFF";
+    return std::nullopt;
+  }
+  const fs::path out = scratch_dir() / "rs274.out";
+  const int raw = std::system(
+      (quote(exe) + " -g " + quote(ngc) + " >" + quote(out.string()) + " 2>&1 </dev/null").c_str());
+  EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 0);
+  return slurp(out);
 }
 
 /// Skips the test when real clients are off, stops it when rs274 failed to run.

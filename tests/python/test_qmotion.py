@@ -539,3 +539,20 @@ def test_fit_is_the_clis_and_reports_what_the_motion_does(tmp_path):
     assert max(report["position_deviation"]) == report["worst_position"]
     with pytest.raises(ArithmeticError, match="cannot be met"):
         qmotion.fit(poses, tol=1e-4)
+
+
+def test_verify_is_the_clis(tmp_path):
+    # One G1 through the ridge of bump.obj between ends that clear it (docs/guide/verify.md).
+    program, part = data("verify/dip.ngc"), data("verify/bump.obj")
+    ours = qmotion.verify(program, "cutter:ball,6,30", part, tol=0.01, output=str(tmp_path / "a.json"))
+    r = cli("verify", program, "--tool", "cutter:ball,6,30", "--part", part, "--tol", "0.01")
+    assert r.returncode == 0, r.stderr
+    theirs = json.loads(r.stdout)
+    assert {k: v for k, v in ours.items() if k != "seconds"} == {k: v for k, v in theirs.items() if k != "seconds"}
+    assert json.load(open(tmp_path / "a.json"))["gouge"] == ours["gouge"]
+    lower, upper = ours["gouge"]["depth"]
+    assert lower <= 0.5 <= upper and upper - lower <= 0.01
+    assert [m["line"] for m in ours["gouge"]["moves"]] == [7]
+    with pytest.raises(ValueError, match="line 4: M3 is not read by verify"):
+        qmotion.verify(data("verify/bad_word.ngc"), "cutter:ball,6,30", part, output=str(tmp_path / "b.json"))
+    assert not (tmp_path / "b.json").exists()

@@ -14,11 +14,13 @@
 #include <qmotion/api/motion_info.hpp>
 #include <qmotion/api/qspline.hpp>
 #include <qmotion/api/toolpath.hpp>
+#include <qmotion/api/verify.hpp>
 #include <qmotion/api/view.hpp>
 #include <qmotion/api/volume.hpp>
 #include <qmotion/cam/cam_nurbs.hpp>
 #include <qmotion/cam/tool_trajectories.hpp>
 #include <qmotion/io/atomic_file.hpp>
+#include <qmotion/io/gcode.hpp>
 #include <qmotion/io/json_number.hpp>
 #include <qmotion/io/mesh.hpp>
 #include <qmotion/io/motion_json.hpp>

@@ -146,9 +146,10 @@ class MeshIndex {
 
   /// The signed distance from x: negative inside. `nearest`, when given, is set to the
   /// mesh's point nearest x. With a cap, only triangles nearer than it are searched, and
-  /// HUGE_VAL says that there are none (|distance| >= cap, of either sign).
+  /// HUGE_VAL says that there are none (|distance| >= cap, of either sign). `triangle`, when
+  /// given, is set to the nearest triangle's index (-1 when none).
   double signed_distance(const Eigen::Vector3d& x, Eigen::Vector3d* nearest = nullptr,
-                         double cap = HUGE_VAL) const {
+                         double cap = HUGE_VAL, int* triangle = nullptr) const {
     double best = cap * cap;
     int tri = -1, where = 6;
     Eigen::Vector3d near = x;
@@ -187,6 +188,7 @@ class MeshIndex {
       if (second.second < best) stack[top++] = second;
       if (first.second < best) stack[top++] = first;
     }
+    if (triangle) *triangle = tri;
     if (tri < 0) return HUGE_VAL;
     const auto t = static_cast<std::size_t>(tri);
     const auto& tr = m_.triangles[t];
@@ -200,6 +202,37 @@ class MeshIndex {
     const double d = std::sqrt(best);
     if (nearest) *nearest = near;
     return (x - near).dot(N) < 0 ? -d : d;
+  }
+
+  /// The indexed mesh.
+  const TriangleMesh& mesh() const { return m_; }
+
+  /// The triangles nearer x than r, at most `limit` of them: false when there are more.
+  bool triangles_within(const Eigen::Vector3d& x, double r, std::size_t limit,
+                        std::vector<int>& out) const {
+    out.clear();
+    std::vector<int> stack;
+    if (!nodes_.empty()) stack.push_back(0);
+    const double r2 = r * r;
+    while (!stack.empty()) {
+      const Node& nd = nodes_[static_cast<std::size_t>(stack.back())];
+      stack.pop_back();
+      if (box_distance(x, nd.box) >= r2) continue;
+      if (nd.count == 0) {
+        stack.push_back(nd.left);
+        stack.push_back(nd.left + 1);
+        continue;
+      }
+      for (int i = nd.first; i < nd.first + nd.count; ++i) {
+        const int t = order_[static_cast<std::size_t>(i)];
+        const auto& tr = m_.triangles[static_cast<std::size_t>(t)];
+        if ((closest_on_triangle(x, p(tr[0]), p(tr[1]), p(tr[2])) - x).squaredNorm() >= r2)
+          continue;
+        if (out.size() == limit) return false;
+        out.push_back(t);
+      }
+    }
+    return true;
   }
 
  private:

@@ -1,0 +1,57 @@
+// <qmotion/api/verify.hpp>: `qmotion verify`: whether a machining program gouges a part,
+// certified between its blocks, not only at them (docs/guide/verify.md).
+#pragma once
+#include <Eigen/Core>
+#include <cstddef>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <qmotion/cam/gouge.hpp>
+#include <qmotion/cam/program.hpp>
+#include <string>
+#include <vector>
+
+namespace qmotion {
+
+struct VerifyOptions {
+  std::string program;        ///< G-code (.ngc, .nc, .gcode, .tap, .cnc)
+  std::string tool;           ///< cutter:flat,D,L, cutter:ball,D,L or cutter:bull,D,rc,L (mm)
+  std::string part;           ///< a closed .stl, .obj or .ply mesh in the program's frame (mm)
+  std::optional<double> tol;  ///< mm; default 0.01
+  std::string output;         ///< the report (.json); empty: none written
+};
+
+/// One move's certified gouge, where it is.
+struct MoveGouge {
+  std::size_t block = 0;  ///< the move's index in the program (0-based)
+  int line = 0;
+  cam::Move::Kind kind = cam::Move::Kind::feed;
+  cam::Gouge gouge;
+};
+
+struct VerifyReport {
+  std::string program;
+  std::size_t moves = 0, feeds = 0, traverses = 0, arcs = 0;
+  double tolerance = 0;
+  /// Over the whole program: no point of the cutter at any t lies deeper in the part than
+  /// gouge_upper; gouge_lower is reached at `deepest` (0: no point found inside).
+  double gouge_lower = 0, gouge_upper = 0;
+  std::optional<MoveGouge> deepest;
+  /// The moves that certainly enter the part (lower > 0), in program order.
+  std::vector<MoveGouge> gouges;
+  /// Every move proven clear of the part (it clears it by more than the tolerance).
+  bool clear = true;
+  bool settled = true;  ///< every move's interval within the tolerance
+  std::size_t queries = 0;
+  double seconds = 0;
+  nlohmann::json report() const;
+};
+
+/// Reads the program and the bodies, and bounds how deep the cutter enters the part over
+/// every move (cam::move_gouge, the moves in parallel), each move to within the tolerance.
+/// Errc::invalid_input (no report written) naming the file, line or body for a program the
+/// G-code reader refuses, a program that turns a rotary axis (5-axis verification is not
+/// there yet), a tool that is not a cutter, a part that is not a closed mesh, and a bad
+/// tolerance.
+VerifyReport verify(const VerifyOptions& options);
+
+}  // namespace qmotion

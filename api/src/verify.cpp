@@ -1,0 +1,130 @@
+// api/src/verify.cpp: `qmotion verify`: a program's gouges, certified over every move
+// (docs/guide/verify.md).
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <qmotion/api/verify.hpp>
+#include <qmotion/io/atomic_file.hpp>
+#include <qmotion/io/bodies.hpp>
+#include <qmotion/io/gcode.hpp>
+#include <qmotion/kernel/error.hpp>
+
+namespace qmotion {
+namespace {
+
+const char* kind_name(cam::Move::Kind k) {
+  return k == cam::Move::Kind::traverse ? "G0" : k == cam::Move::Kind::feed ? "G1" : "arc";
+}
+
+nlohmann::json where_json(const MoveGouge& g) {
+  nlohmann::json j;
+  j["block"] = g.block;
+  j["line"] = g.line;
+  j["move"] = kind_name(g.kind);
+  j["depth"] = {g.gouge.lower, g.gouge.upper};
+  j["t"] = g.gouge.t;
+  j["point"] = {g.gouge.point.x(), g.gouge.point.y(), g.gouge.point.z()};
+  return j;
+}
+
+sweep::Body read_cutter(const std::string& spec) {
+  using K = sweep::Body::Kind;
+  sweep::Body c = io::read_body(spec);
+  sweep::validate(c);
+  if (c.kind != K::flat_cutter && c.kind != K::ball_cutter && c.kind != K::bull_cutter)
+    throw Error(Errc::invalid_input, "--tool '" + spec +
+                                         "': verify needs a cutter (cutter:flat,D,L, "
+                                         "cutter:ball,D,L or cutter:bull,D,rc,L)");
+  return c;
+}
+
+sweep::Body read_part(const std::string& spec) {
+  sweep::Body p = io::read_body(spec);
+  if (p.kind != sweep::Body::Kind::mesh)
+    throw Error(Errc::invalid_input,
+                "--part '" + spec + "': verify needs the part as a closed .stl, .obj or .ply mesh");
+  return p;
+}
+
+}  // namespace
+
+nlohmann::json VerifyReport::report() const {
+  nlohmann::json j;
+  j["program"] = program;
+  j["moves"] = {{"total", moves}, {"G0", traverses}, {"G1", feeds}, {"arcs", arcs}};
+  j["tolerance"] = tolerance;
+  nlohmann::json g;
+  g["depth"] = {gouge_lower, gouge_upper};
+  g["certified"] = settled;
+  g["within_tolerance"] = settled && gouge_upper <= tolerance;
+  g["never_touches"] = clear;
+  if (deepest) g["deepest"] = where_json(*deepest);
+  g["moves"] = nlohmann::json::array();
+  for (const MoveGouge& m : gouges) g["moves"].push_back(where_json(m));
+  j["gouge"] = g;
+  // A rapid move that enters the part is a collision, whatever its depth.
+  nlohmann::json c;
+  c["checked"] = {"rapid moves (G0) through the part"};
+  c["rapids_through_part"] = nlohmann::json::array();
+  for (const MoveGouge& m : gouges)
+    if (m.kind == cam::Move::Kind::traverse) c["rapids_through_part"].push_back(where_json(m));
+  j["collisions"] = c;
+  j["distance_queries"] = queries;
+  j["seconds"] = seconds;
+  return j;
+}
+
+VerifyReport verify(const VerifyOptions& o) {
+  const auto start = std::chrono::steady_clock::now();
+  const double tol = o.tol.value_or(0.01);
+  if (!(tol > 0) || !std::isfinite(tol))
+    throw Error(Errc::invalid_input, "--tol: the tolerance must be a positive length in mm, got " +
+                                         kernel::detail::format_double(tol));
+  if (!o.output.empty() && io::lower_extension(o.output) != ".json")
+    throw Error(Errc::invalid_input, "-o '" + o.output + "': the report is written as .json");
+  if (!io::is_gcode_path(o.program))
+    throw Error(Errc::invalid_input,
+                "'" + o.program + "': verify reads G-code (.ngc, .nc, .gcode, .tap, .cnc)");
+  const cam::Program program = io::read_gcode(o.program);
+  const auto rotary = std::find_if(program.moves.begin(), program.moves.end(),
+                                   [](const cam::Move& m) { return m.abc_from != m.abc_to; });
+  if (rotary != program.moves.end())
+    throw Error(Errc::invalid_input, o.program + ": line " + std::to_string(rotary->line) +
+                                         " turns a rotary axis (A, B or C): verify checks 3-axis "
+                                         "programs so far");
+  const sweep::Body cutter = read_cutter(o.tool);
+  const sweep::Body part = read_part(o.part);
+
+  VerifyReport r;
+  r.program = o.program;
+  r.tolerance = tol;
+  r.moves = program.moves.size();
+  std::vector<cam::Gouge> found(program.moves.size());
+  tbb::parallel_for(std::size_t(0), program.moves.size(), [&](std::size_t i) {
+    found[i] = cam::move_gouge(program.moves[i], cutter, part, tol);
+  });
+  for (std::size_t i = 0; i < found.size(); ++i) {
+    const cam::Move& m = program.moves[i];
+    (m.kind == cam::Move::Kind::traverse ? r.traverses
+     : m.kind == cam::Move::Kind::feed   ? r.feeds
+                                         : r.arcs)++;
+    const cam::Gouge& g = found[i];
+    const MoveGouge here{i, m.line, m.kind, g};
+    r.queries += g.queries;
+    r.settled = r.settled && g.settled;
+    r.gouge_upper = std::max(r.gouge_upper, g.upper);
+    r.clear = r.clear && g.clear;
+    if (g.lower > 0) r.gouges.push_back(here);
+    if (g.lower > r.gouge_lower) {
+      r.gouge_lower = g.lower;
+      r.deepest = here;
+    }
+  }
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!o.output.empty()) io::write_file_atomic(o.output, r.report().dump(2) + "\n");
+  return r;
+}
+
+}  // namespace qmotion

@@ -1,0 +1,36 @@
+// cli/verify.cpp: `qmotion verify`.
+#include <CLI/CLI.hpp>
+#include <iostream>
+#include <memory>
+#include <qmotion/api/verify.hpp>
+
+#include "command.hpp"
+
+namespace qmotion::cli {
+
+Command add_verify(CLI::App& app) {
+  auto* sub = app.add_subcommand(
+      "verify",
+      "Check a machining program (G-code from any CAM system) for gouges: how deep the cutter "
+      "enters the part over every move, certified between the blocks, not only at them, to "
+      "within --tol, and which rapid moves (G0) enter it; 3-axis programs, millimetres");
+  auto o = std::make_shared<qmotion::VerifyOptions>();
+  sub->add_option("PROGRAM", o->program, "G-code program (.ngc, .nc, .gcode, .tap, .cnc)")
+      ->required();
+  sub->add_option("--tool", o->tool,
+                  "The cutter, its tip at the programmed point: cutter:flat,D,L, "
+                  "cutter:ball,D,L or cutter:bull,D,rc,L (mm)")
+      ->required();
+  sub->add_option("--part", o->part,
+                  "The finished part: a closed .stl, .obj or .ply mesh in the program's frame (mm)")
+      ->required();
+  sub->add_option("--tol", o->tol, "Width of every certified depth interval, in mm (default 0.01)");
+  sub->add_option("-o,--output", o->output, "Write the report to this .json file as well");
+  return {sub, [o] {
+            const auto r = qmotion::verify(*o);
+            std::cout << r.report().dump(2) << "\n";
+            return 0;  // a gouge is a finding, in the report, not a failure
+          }};
+}
+
+}  // namespace qmotion::cli
