@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <map>
 #include <qmotion/io/atomic_file.hpp>
@@ -83,7 +84,12 @@ double number_at(const std::string& s, std::size_t& i, const std::string& where,
                         " holds a parameter or an expression, which verify does not read");
     refuse(where, std::string("the word ") + letter + " has no number");
   }
-  return std::stod(s.substr(start, i - start));
+  // At most 10^12 in any unit: beyond it a double keeps no micrometres, and a longer string
+  // of digits is no coordinate at all.
+  const double v = std::strtod(s.substr(start, i - start).c_str(), nullptr);
+  if (!(std::abs(v) <= 1e12))
+    refuse(where, std::string("the word ") + letter + "'s number is beyond 10^12");
+  return v;
 }
 
 Block parse_block(const std::string& code, const std::string& where) {
@@ -105,7 +111,8 @@ Block parse_block(const std::string& code, const std::string& where) {
     if (letter == 'G') {
       const double r = std::round(v);
       static const int kG[] = {0, 1, 2, 3, 17, 18, 19, 20, 21, 90, 91, 93, 94};
-      if (r != v || std::find(std::begin(kG), std::end(kG), static_cast<int>(r)) == std::end(kG))
+      if (r != v || r < 0 || r > 99 ||
+          std::find(std::begin(kG), std::end(kG), static_cast<int>(r)) == std::end(kG))
         refuse(where, "G" + kernel::detail::format_double(v) +
                           " is not read by verify (it reads G0-G3, G17-G19, G20, G21, G90, G91, "
                           "G93 and G94)");
@@ -177,8 +184,8 @@ void make_arc(cam::Move& m, const Block& b, const State& s, int g, const std::st
   }
   int turns = 1;
   if (const auto p = b.words.find('P'); p != b.words.end()) {
-    if (p->second != std::round(p->second) || p->second < 1)
-      refuse(where, "P, the arc's turns, must be a positive whole number");
+    if (p->second != std::round(p->second) || p->second < 1 || p->second > 1000)
+      refuse(where, "P, the arc's turns, must be a whole number from 1 to 1000");
     turns = static_cast<int>(p->second);
   }
   m.turns = g == 3 ? turns : -turns;

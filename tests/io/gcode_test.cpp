@@ -82,6 +82,7 @@ TEST(Gcode, RefusesWhatItDoesNotReadNamingTheLine) {
       {"G0 Z1\nG1 X[1+1] F1\n", "p.ngc: line 2: the word X holds a parameter"},
       {"G0 Z1\nG64 P0.01\n", "p.ngc: line 2: G64 is not read by verify"},
       {"G0 Z1\nG91.1\n", "p.ngc: line 2: G91.1 is not read by verify"},
+      {"G0 Z1\nG99999999999\n", "p.ngc: line 2: G1e+11 is not read by verify"},
       {"X1\n", "p.ngc: line 1: axis words with no motion mode"},
       {"G1 X1\n", "p.ngc: line 1: a feed move with no feed rate"},
       {"G2 X1 Y1 F1\n", "p.ngc: line 1: an arc with neither R nor the centre's offsets"},
@@ -92,13 +93,18 @@ TEST(Gcode, RefusesWhatItDoesNotReadNamingTheLine) {
       {"G0 G1 X1 F1\n", "p.ngc: line 1: G0 and G1 on one line belong to the same modal group"},
       {"G1 X1 X2 F1\n", "p.ngc: line 1: two X words on one line"},
       {"G1 X F1\n", "p.ngc: line 1: the word X has no number"},
+      {"G1 X1" + std::string(400, '0') + " F1\n",
+       "p.ngc: line 1: the word X's number is beyond 10^12"},
+      {"G1 X2000000000000 F1\n", "p.ngc: line 1: the word X's number is beyond 10^12"},
       {"G1 X1 F1 (open\n", "p.ngc: line 1: a comment that is not closed on its line"},
       {"/G1 X1 F1\n", "p.ngc: line 1: block delete"},
-      {"G2 X1 Y1 R1 P0 F1\n", "p.ngc: line 1: P, the arc's turns, must be a positive whole"},
+      {"G2 X1 Y1 R1 P0 F1\n", "p.ngc: line 1: P, the arc's turns, must be a whole number"},
+      {"G2 X1 Y1 R1 P1001 F1\n", "p.ngc: line 1: P, the arc's turns, must be a whole number"},
+      {"G2 X1 Y1 R1 P1.5 F1\n", "p.ngc: line 1: P, the arc's turns, must be a whole number"},
       {"(nothing)\nG21\n", "p.ngc: no move"},
   };
-  for (const auto& [text, words] : bad)
-    expect_refused([&text] { io::parse_gcode(text, "p.ngc"); }, words);
+  for (const auto& item : bad)
+    expect_refused([&item] { io::parse_gcode(item.first, "p.ngc"); }, item.second);
 }
 
 }  // namespace
