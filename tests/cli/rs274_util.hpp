@@ -26,23 +26,13 @@ namespace qmotion::test {
 /// G-code file (x, y, z, a, b, c). Nothing when the build turned real clients off
 /// (-DQMOTION_REAL_CLIENTS=OFF: the test skips, RS274_OR_SKIP), or, a failure, when rs274
 /// is missing (/usr/bin/rs274, or what QMOTION_RS274 names).
+inline std::optional<std::string> rs274_log(const std::string& ngc);
+
 inline std::optional<std::vector<std::array<double, 6>>> rs274_moves(const std::string& ngc,
                                                                      std::string& log) {
-  if (!QMOTION_REAL_CLIENTS) return std::nullopt;
-  const char* env = std::getenv("QMOTION_RS274");
-  const std::string exe = env ? env : "/usr/bin/rs274";
-  if (!fs::exists(exe)) {
-    ADD_FAILURE() << exe
-                  << " not found: LinuxCNC's rs274 is required (install linuxcnc-uspace: "
-                     "scripts/install-deps.sh --test), or configure with "
-                     "-DQMOTION_REAL_CLIENTS=OFF";
-    return std::nullopt;
-  }
-  const fs::path out = scratch_dir() / "rs274.out";
-  const int raw = std::system(
-      (quote(exe) + " -g " + quote(ngc) + " >" + quote(out.string()) + " 2>&1 </dev/null").c_str());
-  log = slurp(out);
-  EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 0) << log;
+  const auto out = rs274_log(ngc);
+  if (!out) return std::nullopt;
+  log = *out;
   std::vector<std::array<double, 6>> moves;
   std::istringstream in(log);
   for (std::string line; std::getline(in, line);) {
