@@ -13,7 +13,9 @@ Command add_verify(CLI::App& app) {
       "verify",
       "Check a machining program (G-code from any CAM system) for gouges: how deep the cutter "
       "enters the part over every move, certified between the blocks, not only at them, to "
-      "within --tol, and which rapid moves (G0) enter it; 3-axis programs, millimetres");
+      "within --tol, and which rapid moves (G0) enter it; with --stock, the stock it leaves "
+      "on the part (largest and mean, certified over the whole surface); 3-axis programs, "
+      "millimetres");
   auto o = std::make_shared<qmotion::VerifyOptions>();
   sub->add_option("PROGRAM", o->program, "G-code program (.ngc, .nc, .gcode, .tap, .cnc)")
       ->required();
@@ -24,6 +26,12 @@ Command add_verify(CLI::App& app) {
   sub->add_option("--part", o->part,
                   "The finished part: a closed .stl, .obj or .ply mesh in the program's frame (mm)")
       ->required();
+  sub->add_option("--stock", o->stock,
+                  "The raw stock: box:x0,y0,z0,x1,y1,z1 (two opposite corners, mm) or a closed "
+                  ".stl, .obj or .ply mesh; reports the stock left on the part");
+  sub->add_option("--map", o->map,
+                  "Write the part coloured by stock left (blue) and gouge (red): .ply with "
+                  "vertex colours, or .svg or .png seen from above; needs --stock");
   sub->add_option("--tol", o->tol, "Width of every certified depth interval, in mm (default 0.01)");
   sub->add_option("-o,--output", o->output, "Write the report to this .json file as well");
   return {sub, [o] {

@@ -256,23 +256,28 @@ void bind_cam_jobs(py::module_& m) {
   m.def(
       "verify",
       [](const std::string& program, const std::string& tool, const std::string& part,
-         const py::object& tol, const std::string& output) {
+         const py::object& tol, const std::string& output, const std::string& stock,
+         const std::string& map) {
         VerifyOptions o;
         o.program = program;
         o.tool = tool;
         o.part = part;
         if (!tol.is_none()) o.tol = tol.cast<double>();
         o.output = output;
+        o.stock = stock;
+        o.map = map;
         return to_python(verify(o).report());
       },
       py::arg("program"), py::arg("tool"), py::arg("part"), py::arg("tol") = py::none(),
-      py::arg("output") = "",
+      py::arg("output") = "", py::arg("stock") = "", py::arg("map") = "",
       "`qmotion verify`: whether a 3-axis G-code program (.ngc, .nc, .gcode, .tap, .cnc) "
       "gouges part (a closed .stl/.obj/.ply mesh, mm) with tool (cutter:flat|ball,D,L or "
       "cutter:bull,D,rc,L), certified at every instant of every move to within tol (mm, "
-      "default 0.01); output: a .json file for the report too. Returns the report dict: "
-      "gouge (depth [lower, upper], within_tolerance, never_touches, deepest, moves), "
-      "collisions (rapids_through_part), moves, tolerance, ...");
+      "default 0.01); output: a .json file for the report too; stock (box:x0,y0,z0,x1,y1,z1 "
+      "or a closed mesh): also the stock left on the part; map (.ply, .svg, .png): the part "
+      "coloured by it. Returns the report dict: gouge (depth [lower, upper], "
+      "within_tolerance, never_touches, deepest, moves), collisions (rapids_through_part), "
+      "stock_left (max, mean, where), moves, tolerance, ...");
 }
 
 }  // namespace

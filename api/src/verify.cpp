@@ -11,6 +11,8 @@
 #include <qmotion/io/gcode.hpp>
 #include <qmotion/kernel/error.hpp>
 
+#include "verify_stock.hpp"
+
 namespace qmotion {
 namespace {
 
@@ -71,6 +73,7 @@ nlohmann::json VerifyReport::report() const {
   for (const MoveGouge& m : gouges)
     if (m.kind == cam::Move::Kind::traverse) c["rapids_through_part"].push_back(where_json(m));
   j["collisions"] = c;
+  if (stock) j["stock_left"] = detail::stock_json(*stock);
   j["distance_queries"] = queries;
   j["seconds"] = seconds;
   return j;
@@ -94,8 +97,20 @@ VerifyReport verify(const VerifyOptions& o) {
     throw Error(Errc::invalid_input, o.program + ": line " + std::to_string(rotary->line) +
                                          " turns a rotary axis (A, B or C): verify checks 3-axis "
                                          "programs so far");
+  if (!o.map.empty()) {
+    const std::string e = io::lower_extension(o.map);
+    if (e != ".ply" && e != ".png" && e != ".svg")
+      throw Error(Errc::invalid_input,
+                  "--map '" + o.map + "': the map is written as .ply, .png or .svg");
+    if (o.stock.empty())
+      throw Error(Errc::invalid_input, "--map '" + o.map +
+                                           "': the map shows the stock left: "
+                                           "give the raw stock with --stock");
+  }
   const sweep::Body cutter = read_cutter(o.tool);
   const sweep::Body part = read_part(o.part);
+  const std::optional<cam::Stock> stock =
+      o.stock.empty() ? std::nullopt : std::optional<cam::Stock>(io::read_stock(o.stock));
 
   VerifyReport r;
   r.program = o.program;
@@ -122,7 +137,13 @@ VerifyReport verify(const VerifyOptions& o) {
       r.deepest = here;
     }
   }
+  if (stock) {
+    r.stock = detail::stock_left(program, cutter, part, *stock, tol);
+    r.queries += r.stock->queries;
+  }
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  // The map first: a report is written only once everything it names is.
+  if (!o.map.empty()) detail::write_stock_map(o.map, part, *r.stock, tol);
   if (!o.output.empty()) io::write_file_atomic(o.output, r.report().dump(2) + "\n");
   return r;
 }

@@ -2,6 +2,8 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <memory>
+#include <qmotion/cam/stock.hpp>
 #include <qmotion/io/atomic_file.hpp>
 #include <qmotion/io/bodies.hpp>
 #include <qmotion/io/json_number.hpp>
@@ -348,6 +350,30 @@ Body read_body(const std::string& spec) {
   for (std::size_t i = 0; i < v.size(); ++i) b.*(form->sizes[i]) = v[i];
   sweep::validate(b);
   return b;
+}
+
+cam::Stock read_stock(const std::string& spec) {
+  cam::Stock stock;
+  const std::string where = "--stock '" + spec + "'";
+  if (spec.rfind("box:", 0) == 0) {
+    const auto v = parse_numbers(spec.substr(4), where);
+    if (v.size() != 6)
+      throw Error(Errc::invalid_input, where +
+                                           ": expected box:x0,y0,z0,x1,y1,z1 (two opposite "
+                                           "corners, mm), got " +
+                                           std::to_string(v.size()) + " numbers");
+    const Eigen::Vector3d a(v[0], v[1], v[2]), b(v[3], v[4], v[5]);
+    stock.box = Eigen::AlignedBox3d(a.cwiseMin(b), a.cwiseMax(b));
+    if (!(stock.box.sizes().minCoeff() > 0))
+      throw Error(Errc::invalid_input, where + ": the box has an edge of length 0");
+    return stock;
+  }
+  const std::string e = lower_extension(spec);
+  if (e != ".stl" && e != ".obj" && e != ".ply")
+    throw Error(Errc::invalid_input,
+                where + ": expected box:x0,y0,z0,x1,y1,z1 or a closed .stl, .obj or .ply mesh");
+  stock.body = std::make_shared<Body>(read_body(spec));
+  return stock;
 }
 
 }  // namespace qmotion::io

@@ -199,16 +199,28 @@ void write_mesh(const std::string& path, const Mesh& m, bool ascii) {
   } else if (e == ".ply") {
     os << "ply\nformat " << (ascii ? "ascii" : "binary_little_endian") << " 1.0\n"
        << "comment qmotion mesh\nelement vertex " << m.vertices.size()
-       << "\nproperty double x\nproperty double y\nproperty double z\nelement face "
-       << m.triangles.size() << "\nproperty list uchar int vertex_indices\nend_header\n";
+       << "\nproperty double x\nproperty double y\nproperty double z\n";
+    const bool coloured = m.colours.size() == m.vertices.size() && !m.vertices.empty();
+    if (coloured) os << "property uchar red\nproperty uchar green\nproperty uchar blue\n";
+    os << "element face " << m.triangles.size()
+       << "\nproperty list uchar int vertex_indices\nend_header\n";
     if (ascii) {
-      for (const auto& p : m.vertices) os << p(0) << " " << p(1) << " " << p(2) << "\n";
+      for (std::size_t i = 0; i < m.vertices.size(); ++i) {
+        const auto& p = m.vertices[i];
+        os << p(0) << " " << p(1) << " " << p(2);
+        if (coloured)
+          for (unsigned char c : m.colours[i]) os << " " << int(c);
+        os << "\n";
+      }
       for (const auto& t : m.triangles) os << "3 " << t[0] << " " << t[1] << " " << t[2] << "\n";
       out = os.str();
     } else {
       out = os.str();
-      for (const auto& p : m.vertices)
-        for (int k = 0; k < 3; ++k) put_f64(out, p(k));
+      for (std::size_t i = 0; i < m.vertices.size(); ++i) {
+        for (int k = 0; k < 3; ++k) put_f64(out, m.vertices[i](k));
+        if (coloured)
+          for (unsigned char c : m.colours[i]) out.push_back(static_cast<char>(c));
+      }
       for (const auto& t : m.triangles) {
         out.push_back(3);
         for (int v : t) put_u32(out, static_cast<std::uint32_t>(v));

@@ -84,10 +84,8 @@ void write_program(const std::string& path, int passes, double r) {
   std::fclose(f);
 }
 
-/// Passes of 101 G1 blocks (100: 10^4 feeds, the goal), T = 0.01 mm.
-void BM_VerifyFinishing(benchmark::State& state) {
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("qmotion_bench_verify_" + std::to_string(::getpid()));
+/// The program of `passes` passes over the part, written to a folder of this process.
+qmotion::VerifyOptions finishing(int passes, const std::filesystem::path& dir) {
   std::filesystem::create_directories(dir);
   qmotion::VerifyOptions o;
   o.part = (dir / "part.obj").string();
@@ -95,7 +93,18 @@ void BM_VerifyFinishing(benchmark::State& state) {
   o.tool = "cutter:ball,6,40";
   o.tol = 0.01;
   write_part(o.part, 200);
-  write_program(o.program, static_cast<int>(state.range(0)), 3);
+  write_program(o.program, passes, 3);
+  return o;
+}
+
+std::filesystem::path scratch() {
+  return std::filesystem::temp_directory_path() /
+         ("qmotion_bench_verify_" + std::to_string(::getpid()));
+}
+
+/// Passes of 101 G1 blocks (100: 10^4 feeds, the goal), T = 0.01 mm.
+void BM_VerifyFinishing(benchmark::State& state) {
+  const qmotion::VerifyOptions o = finishing(static_cast<int>(state.range(0)), scratch());
   qmotion::VerifyReport r;
   for (auto _ : state) {
     r = qmotion::verify(o);
@@ -108,7 +117,7 @@ void BM_VerifyFinishing(benchmark::State& state) {
   state.counters["gouge_upper_mm"] = r.gouge_upper;
   state.counters["gouge_lower_mm"] = r.gouge_lower;
   state.counters["certified"] = r.settled ? 1 : 0;
-  std::filesystem::remove_all(dir);
+  std::filesystem::remove_all(scratch());
 }
 BENCHMARK(BM_VerifyFinishing)
     ->ArgName("passes")
@@ -117,6 +126,32 @@ BENCHMARK(BM_VerifyFinishing)
     ->Unit(benchmark::kSecond)
     ->Iterations(1);
 
+/// The same with the stock left: a box from the part's bottom to 2 mm above its highest
+/// point (docs/guide/verify.md, "Stock left"). Counters: the largest stock left's interval
+/// and the mean's, and the cells evaluated.
+void BM_VerifyStockLeft(benchmark::State& state) {
+  qmotion::VerifyOptions o = finishing(static_cast<int>(state.range(0)), scratch());
+  o.stock = "box:-50,-50,-40,50,50,-4";
+  qmotion::VerifyReport r;
+  for (auto _ : state) {
+    r = qmotion::verify(o);
+    benchmark::DoNotOptimize(r.gouges.data());
+  }
+  state.counters["blocks"] = static_cast<double>(r.moves);
+  state.counters["cells"] = static_cast<double>(r.stock->cells);
+  state.counters["max_lower_mm"] = r.stock->max_lower;
+  state.counters["max_upper_mm"] = r.stock->max_upper;
+  state.counters["mean_lower_mm"] = r.stock->mean_lower;
+  state.counters["mean_upper_mm"] = r.stock->mean_upper;
+  state.counters["max_certified"] = r.stock->max_settled ? 1 : 0;
+  std::filesystem::remove_all(scratch());
+}
+BENCHMARK(BM_VerifyStockLeft)
+    ->ArgName("passes")
+    ->Arg(2)
+    ->Arg(100)
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1);
 }  // namespace
 
 BENCHMARK_MAIN();

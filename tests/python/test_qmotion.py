@@ -556,3 +556,19 @@ def test_verify_is_the_clis(tmp_path):
     with pytest.raises(ValueError, match="line 4: M3 is not read by verify"):
         qmotion.verify(data("verify/bad_word.ngc"), "cutter:ball,6,30", part, output=str(tmp_path / "b.json"))
     assert not (tmp_path / "b.json").exists()
+
+
+def test_verify_stock_is_the_clis(tmp_path):
+    # offsets.ngc's passes over plate.obj under a 1 mm stock: the stock left and its map.
+    program, part = data("verify/offsets.ngc"), data("verify/plate.obj")
+    stock = "box:-30,-30,-20,30,30,1"
+    ours = qmotion.verify(program, "cutter:ball,6,30", part, stock=stock, map=str(tmp_path / "m.ply"))
+    r = cli("verify", program, "--tool", "cutter:ball,6,30", "--part", part, "--stock", stock)
+    assert r.returncode == 0, r.stderr
+    assert ours["stock_left"] == json.loads(r.stdout)["stock_left"]
+    lower, upper = ours["stock_left"]["max"]
+    assert 0 <= lower <= upper <= 1 + 1e-9  # at most the stock's 1 mm over the part
+    assert (tmp_path / "m.ply").read_bytes().startswith(b"ply\n")
+    with pytest.raises(ValueError, match="give the raw stock with --stock"):
+        qmotion.verify(program, "cutter:ball,6,30", part, map=str(tmp_path / "n.ply"))
+    assert not (tmp_path / "n.ply").exists()

@@ -18,6 +18,36 @@ struct VerifyOptions {
   std::string part;           ///< a closed .stl, .obj or .ply mesh in the program's frame (mm)
   std::optional<double> tol;  ///< mm; default 0.01
   std::string output;         ///< the report (.json); empty: none written
+  /// The raw stock: box:x0,y0,z0,x1,y1,z1 (two opposite corners, mm) or a closed mesh;
+  /// empty: no stock figures.
+  std::string stock;
+  /// The part coloured by stock left and gouge: .ply (vertex colours), .svg or .png (a view
+  /// from above); needs the stock. Empty: none.
+  std::string map;
+};
+
+/// What the program leaves of the stock on the part (docs/guide/verify.md, "Stock left"):
+/// at a point p of the part's surface, the distance from p to the nearest point that is
+/// not remaining stock (cut by the cutter, or outside the raw stock); 0 where the cutter
+/// reaches p. Each figure an interval that holds it over the whole surface.
+struct StockLeft {
+  double max_lower = 0, max_upper = 0;              ///< the largest stock left
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  ///< where max_lower is reached
+  /// The move that comes nearest to `point` (none when the raw stock's face is nearer:
+  /// the stock there was never cut), its line and t.
+  std::optional<std::size_t> block;
+  int line = 0;
+  double t = 0;
+  /// The mean over the part's surface inside the raw stock, and its estimate from the
+  /// cells' centres (a sample, beside the interval).
+  double mean_lower = 0, mean_upper = 0, mean_estimate = 0;
+  double area_in_stock = 0;  ///< mm^2 (the estimate's)
+  std::size_t cells = 0, queries = 0;
+  bool max_settled = false;   ///< max_upper - max_lower <= the tolerance
+  bool mean_settled = false;  ///< the mean's interval no wider than the tolerance
+  /// Per vertex of the part's mesh (the map's colours): min(depth in the raw stock,
+  /// distance to the swept cutter), negative where the cutter enters the part.
+  std::vector<double> vertex_values;
 };
 
 /// One move's certified gouge, where it is.
@@ -40,7 +70,8 @@ struct VerifyReport {
   std::vector<MoveGouge> gouges;
   /// Every move proven clear of the part (it clears it by more than the tolerance).
   bool clear = true;
-  bool settled = true;  ///< every move's interval within the tolerance
+  bool settled = true;             ///< every move's interval within the tolerance
+  std::optional<StockLeft> stock;  ///< with VerifyOptions::stock
   std::size_t queries = 0;
   double seconds = 0;
   nlohmann::json report() const;
@@ -51,7 +82,8 @@ struct VerifyReport {
 /// Errc::invalid_input (no report written) naming the file, line or body for a program the
 /// G-code reader refuses, a program that turns a rotary axis (5-axis verification is not
 /// there yet), a tool that is not a cutter, a part that is not a closed mesh, and a bad
-/// tolerance.
+/// tolerance; a stock that is neither a box nor a closed mesh, and a map without a stock or
+/// of another format.
 VerifyReport verify(const VerifyOptions& options);
 
 }  // namespace qmotion

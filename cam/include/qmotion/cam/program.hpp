@@ -77,19 +77,23 @@ inline ArcShape arc_shape(const Move& m) {
 
 }  // namespace detail
 
-/// The tool tip at t in [0, 1] along the move: linear for traverses and feeds (every axis
-/// together, as an interpreter's straight moves are), and for arcs linear in the angle, the
-/// radius and the coordinate along the plane's normal.
-inline Eigen::Vector3d position(const Move& m, double t) {
+/// The tool tip at t in [0, 1] along the move, s its arc_shape for arcs: linear for traverses and
+/// feeds (every axis together, as an interpreter's straight moves are), and for arcs linear in the
+/// angle, the radius and the coordinate along the plane's normal.
+inline Eigen::Vector3d position(const Move& m, const detail::ArcShape& s, double t) {
   if (m.kind != Move::Kind::arc) return m.from + t * (m.to - m.from);
   const auto [u, v, w] = plane_axes(m.plane);
-  const detail::ArcShape s = detail::arc_shape(m);
   const double a = s.a0 + t * s.sweep, r = s.r0 + t * (s.r1 - s.r0);
   Eigen::Vector3d p;
   p(u) = m.centre(u) + r * std::cos(a);
   p(v) = m.centre(v) + r * std::sin(a);
   p(w) = m.from(w) + t * (m.to(w) - m.from(w));
   return p;
+}
+
+/// The same, the arc's shape worked out here (arc_shape; pass it in where t varies).
+inline Eigen::Vector3d position(const Move& m, double t) {
+  return position(m, m.kind == Move::Kind::arc ? detail::arc_shape(m) : detail::ArcShape{}, t);
 }
 
 /// A bound on |d position / dt| over the whole move: |p(t) - p(s)| <= speed_bound * |t - s|.

@@ -4,6 +4,10 @@
 #include <qmotion/sweep/body.hpp>
 #include <string>
 
+namespace qmotion::cam {
+struct Stock;  // <qmotion/cam/stock.hpp>
+}
+
 namespace qmotion::io {
 
 /// The body named by `spec`: `sphere:r`, `box:a,b,c`, `cylinder:r,h`, `cutter:flat,D,L`,
@@ -23,5 +27,10 @@ sweep::Body mesh_body(sweep::TriangleMesh mesh, const std::string& label);
 /// consistently oriented (every directed edge must occur once and its reverse once), or
 /// that is oriented inward or encloses no volume (its signed volume is not positive).
 void require_closed_oriented(const sweep::TriangleMesh& m, const std::string& label);
+
+/// A raw stock for `verify --stock`: `box:x0,y0,z0,x1,y1,z1` (two opposite corners, in
+/// any order, mm) or a closed mesh file as read_body reads it. Errc::invalid_input naming
+/// the stock for another body, bad numbers, and a box with an edge not longer than 0.
+cam::Stock read_stock(const std::string& spec);
 
 }  // namespace qmotion::io

@@ -27,6 +27,8 @@ struct Mesh {
   int rounds = 0;               ///< meshing rounds until the measurement held
   bool closed = false;          ///< every edge bounds exactly two triangles
   bool oriented = false;        ///< closed, and every directed edge occurs once
+  /// Per vertex red, green, blue, written to .ply only (empty: none).
+  std::vector<std::array<unsigned char, 3>> colours;
 };
 
 /// The shell meshed by BRepMesh_IncrementalMesh and measured: every triangle's centroid and
@@ -40,7 +42,8 @@ Mesh mesh_shell_within(const sweep::NurbsShell<double>& shell, const MeshOptions
                        const std::string& path);
 
 /// Writes the mesh by the extension of path: .stl (binary, or ASCII), .obj, .ply (binary
-/// little-endian with double coordinates, or ASCII). Atomic.
+/// little-endian with double coordinates, or ASCII; with the colours when there is one per
+/// vertex). Atomic.
 void write_mesh(const std::string& path, const Mesh& m, bool ascii);
 
 /// Whether path names a mesh format (.stl, .obj, .ply).
