@@ -14,7 +14,8 @@ Command add_verify(CLI::App& app) {
       "Check a machining program (G-code from any CAM system) for gouges: how deep the cutter "
       "enters the part over every move, certified between the blocks, not only at them, to "
       "within --tol, and which rapid moves (G0) enter it; with --stock, the stock it leaves "
-      "on the part (largest and mean, certified over the whole surface); 3-axis programs, "
+      "on the part (largest and mean, certified over the whole surface); with --holder, where "
+      "the holder first touches the stock as cut so far or the part; 3-axis programs, "
       "millimetres");
   auto o = std::make_shared<qmotion::VerifyOptions>();
   sub->add_option("PROGRAM", o->program, "G-code program (.ngc, .nc, .gcode, .tap, .cnc)")
@@ -32,6 +33,13 @@ Command add_verify(CLI::App& app) {
   sub->add_option("--map", o->map,
                   "Write the part coloured by stock left (blue) and gouge (red): .ply with "
                   "vertex colours, or .svg or .png seen from above; needs --stock");
+  sub->add_option("--holder", o->holder,
+                  "The tool holder, cylinder:r,h: radius r from the cutter's length up h (mm); "
+                  "reports the first instant of each move at which it enters the stock as cut "
+                  "so far (with --stock) or the part");
+  sub->add_option("--fixture", o->fixtures,
+                  "A fixture (clamp, vice), repeatable: box:x0,y0,z0,x1,y1,z1 or a closed .stl, "
+                  ".obj or .ply mesh; reports where the cutter or the holder first touches it");
   sub->add_option("--tol", o->tol, "Width of every certified depth interval, in mm (default 0.01)");
   sub->add_option("-o,--output", o->output, "Write the report to this .json file as well");
   return {sub, [o] {

@@ -257,7 +257,8 @@ void bind_cam_jobs(py::module_& m) {
       "verify",
       [](const std::string& program, const std::string& tool, const std::string& part,
          const py::object& tol, const std::string& output, const std::string& stock,
-         const std::string& map) {
+         const std::string& map, const std::string& holder,
+         const std::vector<std::string>& fixtures) {
         VerifyOptions o;
         o.program = program;
         o.tool = tool;
@@ -266,17 +267,23 @@ void bind_cam_jobs(py::module_& m) {
         o.output = output;
         o.stock = stock;
         o.map = map;
+        o.holder = holder;
+        o.fixtures = fixtures;
         return to_python(verify(o).report());
       },
       py::arg("program"), py::arg("tool"), py::arg("part"), py::arg("tol") = py::none(),
-      py::arg("output") = "", py::arg("stock") = "", py::arg("map") = "",
+      py::arg("output") = "", py::arg("stock") = "", py::arg("map") = "", py::arg("holder") = "",
+      py::arg("fixtures") = std::vector<std::string>{},
       "`qmotion verify`: whether a 3-axis G-code program (.ngc, .nc, .gcode, .tap, .cnc) "
       "gouges part (a closed .stl/.obj/.ply mesh, mm) with tool (cutter:flat|ball,D,L or "
       "cutter:bull,D,rc,L), certified at every instant of every move to within tol (mm, "
       "default 0.01); output: a .json file for the report too; stock (box:x0,y0,z0,x1,y1,z1 "
       "or a closed mesh): also the stock left on the part; map (.ply, .svg, .png): the part "
-      "coloured by it. Returns the report dict: gouge (depth [lower, upper], "
-      "within_tolerance, never_touches, deepest, moves), collisions (rapids_through_part), "
+      "coloured by it; holder (cylinder:r,h above the cutter's length): where it first enters "
+      "the stock as cut so far or the part; fixtures (each as a stock): where the cutter or the "
+      "holder first touches them. Returns the report dict: gouge (depth [lower, upper], "
+      "within_tolerance, never_touches, deepest, moves), collisions (rapids_through_part, "
+      "holder), "
       "stock_left (max, mean, where), moves, tolerance, ...");
 }
 

@@ -11,6 +11,7 @@
 #include <qmotion/io/gcode.hpp>
 #include <qmotion/kernel/error.hpp>
 
+#include "verify_collide.hpp"
 #include "verify_stock.hpp"
 
 namespace qmotion {
@@ -69,6 +70,18 @@ nlohmann::json VerifyReport::report() const {
   // A rapid move that enters the part is a collision, whatever its depth.
   nlohmann::json c;
   c["checked"] = {"rapid moves (G0) through the part"};
+  if (rapids_through_stock) {
+    c["checked"].push_back("rapid moves (G0) through the stock as cut so far");
+    c["rapids_through_stock"] = *rapids_through_stock;
+  }
+  if (fixtures) {
+    c["checked"].push_back("the cutter and the holder against the fixtures");
+    c["fixtures"] = *fixtures;
+  }
+  if (holder) {
+    c["checked"].push_back("the holder against the stock as cut so far and the part");
+    c["holder"] = *holder;
+  }
   c["rapids_through_part"] = nlohmann::json::array();
   for (const MoveGouge& m : gouges)
     if (m.kind == cam::Move::Kind::traverse) c["rapids_through_part"].push_back(where_json(m));
@@ -111,6 +124,16 @@ VerifyReport verify(const VerifyOptions& o) {
   const sweep::Body part = read_part(o.part);
   const std::optional<cam::Stock> stock =
       o.stock.empty() ? std::nullopt : std::optional<cam::Stock>(io::read_stock(o.stock));
+  std::vector<cam::Stock> fixtures;
+  for (const std::string& f : o.fixtures) fixtures.push_back(io::read_stock(f, "--fixture"));
+  std::optional<sweep::Body> holder;
+  if (!o.holder.empty()) {
+    holder = io::read_body(o.holder);
+    if (holder->kind != sweep::Body::Kind::cylinder)
+      throw Error(Errc::invalid_input, "--holder '" + o.holder +
+                                           "': the holder is a cylinder:r,h (radius, length; "
+                                           "it starts at the cutter's length)");
+  }
 
   VerifyReport r;
   r.program = o.program;
@@ -140,6 +163,21 @@ VerifyReport verify(const VerifyOptions& o) {
   if (stock) {
     r.stock = detail::stock_left(program, cutter, part, *stock, tol);
     r.queries += r.stock->queries;
+  }
+  if (stock) {
+    std::size_t cells = 0;
+    r.rapids_through_stock = detail::rapids_through_stock(program, cutter, *stock, tol, cells);
+    r.queries += cells;
+  }
+  if (holder) {
+    std::size_t cells = 0;
+    r.holder = detail::holder_collisions(program, cutter, *holder, part, stock, tol, cells);
+    r.queries += cells;
+  }
+  if (!fixtures.empty()) {
+    std::size_t cells = 0;
+    r.fixtures = detail::fixture_collisions(program, cutter, holder, fixtures, tol, cells);
+    r.queries += cells;
   }
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   // The map first: a report is written only once everything it names is.

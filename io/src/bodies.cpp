@@ -352,9 +352,9 @@ Body read_body(const std::string& spec) {
   return b;
 }
 
-cam::Stock read_stock(const std::string& spec) {
+cam::Stock read_stock(const std::string& spec, const std::string& option) {
   cam::Stock stock;
-  const std::string where = "--stock '" + spec + "'";
+  const std::string where = option + " '" + spec + "'";
   if (spec.rfind("box:", 0) == 0) {
     const auto v = parse_numbers(spec.substr(4), where);
     if (v.size() != 6)

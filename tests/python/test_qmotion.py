@@ -562,10 +562,15 @@ def test_verify_stock_is_the_clis(tmp_path):
     # offsets.ngc's passes over plate.obj under a 1 mm stock: the stock left and its map.
     program, part = data("verify/offsets.ngc"), data("verify/plate.obj")
     stock = "box:-30,-30,-20,30,30,1"
-    ours = qmotion.verify(program, "cutter:ball,6,30", part, stock=stock, map=str(tmp_path / "m.ply"))
-    r = cli("verify", program, "--tool", "cutter:ball,6,30", "--part", part, "--stock", stock)
+    ours = qmotion.verify(program, "cutter:ball,6,30", part, stock=stock, map=str(tmp_path / "m.ply"),
+                          holder="cylinder:10,20")
+    r = cli("verify", program, "--tool", "cutter:ball,6,30", "--part", part, "--stock", stock,
+            "--holder", "cylinder:10,20")
     assert r.returncode == 0, r.stderr
-    assert ours["stock_left"] == json.loads(r.stdout)["stock_left"]
+    theirs = json.loads(r.stdout)
+    assert ours["stock_left"] == theirs["stock_left"]
+    assert ours["collisions"]["holder"] == theirs["collisions"]["holder"]
+    assert ours["collisions"]["holder"]["clear"]  # 30 mm above the tip, over 1 mm of stock
     lower, upper = ours["stock_left"]["max"]
     assert 0 <= lower <= upper <= 1 + 1e-9  # at most the stock's 1 mm over the part
     assert (tmp_path / "m.ply").read_bytes().startswith(b"ply\n")

@@ -24,6 +24,12 @@ struct VerifyOptions {
   /// The part coloured by stock left and gouge: .ply (vertex colours), .svg or .png (a view
   /// from above); needs the stock. Empty: none.
   std::string map;
+  /// The tool holder, cylinder:r,h: radius r from the cutter's length up h (mm); empty:
+  /// none checked.
+  std::string holder;
+  /// Fixtures (clamps, vices): as the stock, box:x0,y0,z0,x1,y1,z1 or a closed mesh; never
+  /// cut, checked against the cutter and the holder.
+  std::vector<std::string> fixtures;
 };
 
 /// What the program leaves of the stock on the part (docs/guide/verify.md, "Stock left"):
@@ -72,6 +78,15 @@ struct VerifyReport {
   bool clear = true;
   bool settled = true;             ///< every move's interval within the tolerance
   std::optional<StockLeft> stock;  ///< with VerifyOptions::stock
+  /// With VerifyOptions::holder: each move's first contact of the holder with the stock as
+  /// cut so far and with the part (docs/guide/verify.md, "Collisions"), as reported.
+  std::optional<nlohmann::json> holder;
+  /// With VerifyOptions::stock: the rapid moves (G0) whose cutter enters the stock as cut
+  /// so far, each with its first contact, as reported.
+  std::optional<nlohmann::json> rapids_through_stock;
+  /// With VerifyOptions::fixtures: each move's first contact of the cutter or the holder with
+  /// each fixture, as reported.
+  std::optional<nlohmann::json> fixtures;
   std::size_t queries = 0;
   double seconds = 0;
   nlohmann::json report() const;
@@ -82,8 +97,8 @@ struct VerifyReport {
 /// Errc::invalid_input (no report written) naming the file, line or body for a program the
 /// G-code reader refuses, a program that turns a rotary axis (5-axis verification is not
 /// there yet), a tool that is not a cutter, a part that is not a closed mesh, and a bad
-/// tolerance; a stock that is neither a box nor a closed mesh, and a map without a stock or
-/// of another format.
+/// tolerance; a stock that is neither a box nor a closed mesh, a map without a stock or
+/// of another format, a holder that is not a cylinder, and a fixture as a bad stock is.
 VerifyReport verify(const VerifyOptions& options);
 
 }  // namespace qmotion

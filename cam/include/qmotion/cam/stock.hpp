@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <qmotion/cam/gouge.hpp>
 #include <qmotion/cam/program.hpp>
@@ -33,8 +34,11 @@ struct Stock {
   /// linear functions, each at most its largest value at a corner. HUGE_VAL for a body.
   double depth_max(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                    const Eigen::Vector3d& c) const {
+    return depth_max(a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c));
+  }
+  /// The same over the box [lo, hi].
+  double depth_max(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) const {
     if (body) return HUGE_VAL;
-    const Eigen::Vector3d lo = a.cwiseMin(b).cwiseMin(c), hi = a.cwiseMax(b).cwiseMax(c);
     return std::min((hi - box.min()).minCoeff(), (box.max() - lo).minCoeff());
   }
   /// A box holding the stock.
@@ -76,10 +80,17 @@ class CutIndex {
     double t = 0;
     bool settled = true;
     std::size_t queries = 0;
+    /// The search stops as soon as upper is below it (lower is then not within eps).
+    double stop_below = -HUGE_VAL;
   };
   /// `clipped`: the distance clipped at 0 (0 inside), found faster on straight moves, where
   /// it is convex in t (golden-section search; docs/guide/verify.md, "Stock left").
-  Near distance(const Eigen::Vector3d& x, double eps, double limit, bool clipped = false) const;
+  /// `stop_below`: stop once upper is below it (all a caller asking "inside?" needs).
+  /// `before`, `t_end`: only the moves before that one, and that one over [0, t_end] (the
+  /// stock cut so far: docs/guide/verify.md, "Collisions").
+  Near distance(const Eigen::Vector3d& x, double eps, double limit, bool clipped = false,
+                std::size_t before = SIZE_MAX, double t_end = 1,
+                double stop_below = -HUGE_VAL) const;
 
   std::size_t size() const { return moves_.size(); }
 
@@ -104,9 +115,9 @@ class CutIndex {
   };
   int build(std::size_t first, std::size_t count);
   void move_distance(const Leaf& leaf, const Eigen::Vector3d& x, double eps, bool clipped,
-                     Near& near, double& lower) const;
-  void convex_distance(const Leaf& leaf, const Eigen::Vector3d& x, double eps, Near& near,
-                       double& lower) const;
+                     double t_end, Near& near, double& lower) const;
+  void convex_distance(const Leaf& leaf, const Eigen::Vector3d& x, double eps, double t_end,
+                       Near& near, double& lower) const;
 
   std::vector<detail::Core> cores_;
   std::vector<Leaf> moves_;
@@ -225,7 +236,7 @@ inline int CutIndex::build(std::size_t first, std::size_t count) {
 /// at most speed). Intervals are split, least bound first, until that bound is within eps of
 /// the best value found (near.upper, shared across moves) or the budget runs out.
 inline void CutIndex::move_distance(const Leaf& leaf, const Eigen::Vector3d& x, double eps,
-                                    bool clipped, Near& near, double& lower) const {
+                                    bool clipped, double t_end, Near& near, double& lower) const {
   using kernel::down;
   using kernel::up;
   struct Span {
@@ -246,9 +257,9 @@ inline void CutIndex::move_distance(const Leaf& leaf, const Eigen::Vector3d& x, 
     return Span{down(down(d - up(leaf.speed * up(0.5 * (t1 - t0)))) - slack), t0, t1};
   };
   std::priority_queue<Span> spans;
-  spans.push(eval(0, 1));
+  spans.push(eval(0, t_end));
   std::size_t budget = 1 << 12;
-  while (!spans.empty() && spans.top().bound < near.upper - eps) {
+  while (!spans.empty() && spans.top().bound < near.upper - eps && near.upper >= near.stop_below) {
     if (--budget == 0) {
       near.settled = false;
       break;
@@ -266,7 +277,7 @@ inline void CutIndex::move_distance(const Leaf& leaf, const Eigen::Vector3d& x, 
 /// along a segment), so golden-section search keeps a least point in its bracket [a, b],
 /// and over it the distance is at least its value at an inner point less speed (b - a).
 inline void CutIndex::convex_distance(const Leaf& leaf, const Eigen::Vector3d& x, double eps,
-                                      Near& near, double& lower) const {
+                                      double t_end, Near& near, double& lower) const {
   using kernel::down;
   using kernel::up;
   const double slack = 1e-12 * (1 + x.cwiseAbs().maxCoeff());
@@ -281,8 +292,9 @@ inline void CutIndex::convex_distance(const Leaf& leaf, const Eigen::Vector3d& x
     return d;
   };
   const double g = 0.5 * (std::sqrt(5.0) - 1);
-  double a = 0, b = 1, c = 1 - g, d = g, fc = f(c), fd = f(d), bound = -HUGE_VAL;
-  for (int k = 0;; ++k) {
+  double a = 0, b = t_end, c = t_end * (1 - g), d = t_end * g, fc = f(c), fd = f(d);
+  double bound = -HUGE_VAL;
+  for (int k = 0; near.upper >= near.stop_below; ++k) {
     bound = down(down(std::min(fc, fd) - up(leaf.speed * up(b - a))) - slack);
     if (bound >= near.upper - eps || k == 64) break;
     if (fc <= fd) {
@@ -291,12 +303,13 @@ inline void CutIndex::convex_distance(const Leaf& leaf, const Eigen::Vector3d& x
       a = c, c = d, fc = fd, d = a + g * (b - a), fd = f(d);
     }
   }
-  if (bound < near.upper - eps) near.settled = false;
+  if (bound < near.upper - eps && near.upper >= near.stop_below) near.settled = false;
   lower = std::min(lower, bound);
 }
 
 inline CutIndex::Near CutIndex::distance(const Eigen::Vector3d& x, double eps, double limit,
-                                         bool clipped) const {
+                                         bool clipped, std::size_t before, double t_end,
+                                         double stop_below) const {
   Near near;
   near.upper = limit;
   double lower = limit;  // the least bound of the moves searched
@@ -314,7 +327,8 @@ inline CutIndex::Near CutIndex::distance(const Eigen::Vector3d& x, double eps, d
   using Entry = std::pair<double, int>;  // (bound, node), nearest first
   std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> heap;
   heap.emplace(box_bound(nodes_[0].box), 0);
-  while (!heap.empty() && heap.top().first < near.upper - eps) {
+  near.stop_below = stop_below;
+  while (!heap.empty() && heap.top().first < near.upper - eps && near.upper >= stop_below) {
     const Node& n = nodes_[static_cast<std::size_t>(heap.top().second)];
     heap.pop();
     if (n.left >= 0) {
@@ -322,11 +336,13 @@ inline CutIndex::Near CutIndex::distance(const Eigen::Vector3d& x, double eps, d
         heap.emplace(box_bound(nodes_[static_cast<std::size_t>(c)].box), c);
       continue;
     }
-    for (std::size_t i = n.first; i < n.first + n.count; ++i)
-      if (box_bound(moves_[i].box) < near.upper - eps)
+    for (std::size_t i = n.first; i < n.first + n.count; ++i) {
+      const double te = moves_[i].index < before ? 1.0 : moves_[i].index == before ? t_end : 0.0;
+      if (te > 0 && box_bound(moves_[i].box) < near.upper - eps)
         (clipped && moves_[i].move->kind != Move::Kind::arc
-             ? convex_distance(moves_[i], x, eps, near, lower)
-             : move_distance(moves_[i], x, eps, clipped, near, lower));
+             ? convex_distance(moves_[i], x, eps, te, near, lower)
+             : move_distance(moves_[i], x, eps, clipped, te, near, lower));
+    }
   }
   // A move passed over lies no nearer than near.upper - eps (its box, or its spans).
   near.lower = std::min(lower, kernel::down(near.upper - eps));

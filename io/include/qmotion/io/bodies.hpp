@@ -28,9 +28,10 @@ sweep::Body mesh_body(sweep::TriangleMesh mesh, const std::string& label);
 /// that is oriented inward or encloses no volume (its signed volume is not positive).
 void require_closed_oriented(const sweep::TriangleMesh& m, const std::string& label);
 
-/// A raw stock for `verify --stock`: `box:x0,y0,z0,x1,y1,z1` (two opposite corners, in
-/// any order, mm) or a closed mesh file as read_body reads it. Errc::invalid_input naming
-/// the stock for another body, bad numbers, and a box with an edge not longer than 0.
-cam::Stock read_stock(const std::string& spec);
+/// A raw stock for `verify --stock` (or a fixture, `option` naming it in messages):
+/// `box:x0,y0,z0,x1,y1,z1` (two opposite corners, in any order, mm) or a closed mesh file as
+/// read_body reads it. Errc::invalid_input naming the stock for another body, bad numbers, and a
+/// box with an edge not longer than 0.
+cam::Stock read_stock(const std::string& spec, const std::string& option = "--stock");
 
 }  // namespace qmotion::io

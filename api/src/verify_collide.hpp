@@ -1,0 +1,33 @@
+// api/src/verify_collide.hpp: verify's holder collisions (docs/guide/verify.md,
+// "Collisions").
+#pragma once
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <qmotion/cam/collision.hpp>
+#include <qmotion/sweep/body.hpp>
+#include <vector>
+
+namespace qmotion::detail {
+
+/// The holder (a cylinder:r,h above the cutter's length) against the stock as cut so far
+/// (when there is a stock) and the part, every move: each move's first contact, certified,
+/// in program order, and the first of all. Counts the cells in `cells`.
+nlohmann::json holder_collisions(const cam::Program& program, const sweep::Body& cutter,
+                                 const sweep::Body& holder, const sweep::Body& part,
+                                 const std::optional<cam::Stock>& stock, double tol,
+                                 std::size_t& cells);
+
+/// The cutter on every rapid move (G0) against the stock as cut so far: each one's first
+/// contact, as holder_collisions lists them.
+nlohmann::json rapids_through_stock(const cam::Program& program, const sweep::Body& cutter,
+                                    const cam::Stock& stock, double tol, std::size_t& cells);
+
+/// The cutter, and the holder when given, against each fixture (never cut) over every
+/// move: each move's first contact, as holder_collisions lists them, `with` naming the
+/// fixture ("fixture 1", ...) and `body` the cutter or the holder.
+nlohmann::json fixture_collisions(const cam::Program& program, const sweep::Body& cutter,
+                                  const std::optional<sweep::Body>& holder,
+                                  const std::vector<cam::Stock>& fixtures, double tol,
+                                  std::size_t& cells);
+
+}  // namespace qmotion::detail
