@@ -17,15 +17,11 @@
 namespace qmotion {
 namespace {
 
-const char* kind_name(cam::Move::Kind k) {
-  return k == cam::Move::Kind::traverse ? "G0" : k == cam::Move::Kind::feed ? "G1" : "arc";
-}
-
 nlohmann::json where_json(const MoveGouge& g) {
   nlohmann::json j;
   j["block"] = g.block;
   j["line"] = g.line;
-  j["move"] = kind_name(g.kind);
+  j["move"] = detail::move_name(g.kind);
   j["depth"] = {g.gouge.lower, g.gouge.upper};
   j["t"] = g.gouge.t;
   j["point"] = {g.gouge.point.x(), g.gouge.point.y(), g.gouge.point.z()};
@@ -160,18 +156,23 @@ VerifyReport verify(const VerifyOptions& o) {
       r.deepest = here;
     }
   }
+  // What the program cuts, for the stock left and the collisions with the stock.
+  std::optional<cam::CutIndex> cut;
   if (stock) {
-    r.stock = detail::stock_left(program, cutter, part, *stock, tol);
+    cut.emplace(program, cutter);
+    r.stock = detail::stock_left(program, *cut, part, *stock, tol);
     r.queries += r.stock->queries;
   }
   if (stock) {
     std::size_t cells = 0;
-    r.rapids_through_stock = detail::rapids_through_stock(program, cutter, *stock, tol, cells);
+    r.rapids_through_stock =
+        detail::rapids_through_stock(program, cutter, *stock, *cut, tol, cells);
     r.queries += cells;
   }
   if (holder) {
     std::size_t cells = 0;
-    r.holder = detail::holder_collisions(program, cutter, *holder, part, stock, tol, cells);
+    r.holder = detail::holder_collisions(program, cutter, *holder, part, stock,
+                                         cut ? &*cut : nullptr, tol, cells);
     r.queries += cells;
   }
   if (!fixtures.empty()) {

@@ -10,10 +10,6 @@
 namespace qmotion::detail {
 namespace {
 
-const char* kind_name(cam::Move::Kind k) {
-  return k == cam::Move::Kind::traverse ? "G0" : k == cam::Move::Kind::feed ? "G1" : "arc";
-}
-
 const char* verdict(cam::Contact::Kind k) {
   return k == cam::Contact::Kind::contact ? "contact" : "undecided";
 }
@@ -24,7 +20,7 @@ nlohmann::json contact_json(const cam::Program& program, std::size_t i, const ca
   nlohmann::json j;
   j["block"] = i;
   j["line"] = program.moves[i].line;
-  j["move"] = kind_name(program.moves[i].kind);
+  j["move"] = move_name(program.moves[i].kind);
   j["with"] = with;
   j["found"] = verdict(c.kind);
   j["t"] = {c.t_lo, c.t_hi};
@@ -53,19 +49,17 @@ void gather(const cam::Program& program, std::size_t i, const cam::Contact& c, c
 
 nlohmann::json holder_collisions(const cam::Program& program, const sweep::Body& cutter,
                                  const sweep::Body& holder, const sweep::Body& part,
-                                 const std::optional<cam::Stock>& stock, double tol,
-                                 std::size_t& cells) {
+                                 const std::optional<cam::Stock>& stock, const cam::CutIndex* cut,
+                                 double tol, std::size_t& cells) {
   const std::vector<cam::detail::Core> body = cam::holder_cores(holder.r, holder.h, cutter.L);
   cam::Stock part_target;
   part_target.body = std::make_shared<sweep::Body>(part);
-  std::optional<cam::CutIndex> cut;
-  if (stock) cut.emplace(program, cutter);
   const std::size_t n = program.moves.size();
   std::vector<cam::Contact> with_stock(n), with_part(n);
   tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
     const cam::Move& m = program.moves[i];
     with_part[i] = cam::first_contact(m, i, body, part_target, nullptr, tol);
-    if (stock) with_stock[i] = cam::first_contact(m, i, body, *stock, &*cut, tol);
+    if (stock) with_stock[i] = cam::first_contact(m, i, body, *stock, cut, tol);
   });
   nlohmann::json list = nlohmann::json::array(), first;
   for (std::size_t i = 0; i < n; ++i) {
@@ -82,9 +76,9 @@ nlohmann::json holder_collisions(const cam::Program& program, const sweep::Body&
 }
 
 nlohmann::json rapids_through_stock(const cam::Program& program, const sweep::Body& cutter,
-                                    const cam::Stock& stock, double tol, std::size_t& cells) {
+                                    const cam::Stock& stock, const cam::CutIndex& cut, double tol,
+                                    std::size_t& cells) {
   const std::vector<cam::detail::Core> body = cam::detail::cores_of(cutter);
-  const cam::CutIndex cut(program, cutter);
   std::vector<std::size_t> rapids;
   for (std::size_t i = 0; i < program.moves.size(); ++i)
     if (program.moves[i].kind == cam::Move::Kind::traverse) rapids.push_back(i);

@@ -9,18 +9,24 @@
 
 namespace qmotion::detail {
 
+/// "G0", "G1" or "arc", as the report names a move.
+inline const char* move_name(cam::Move::Kind k) {
+  return k == cam::Move::Kind::traverse ? "G0" : k == cam::Move::Kind::feed ? "G1" : "arc";
+}
+
 /// The holder (a cylinder:r,h above the cutter's length) against the stock as cut so far
-/// (when there is a stock) and the part, every move: each move's first contact, certified,
-/// in program order, and the first of all. Counts the cells in `cells`.
+/// (when there is a stock; `cut` is what the program cuts) and the part, every move: each move's
+/// first contact, certified, in program order, and the first of all. Counts the cells in `cells`.
 nlohmann::json holder_collisions(const cam::Program& program, const sweep::Body& cutter,
                                  const sweep::Body& holder, const sweep::Body& part,
-                                 const std::optional<cam::Stock>& stock, double tol,
-                                 std::size_t& cells);
+                                 const std::optional<cam::Stock>& stock, const cam::CutIndex* cut,
+                                 double tol, std::size_t& cells);
 
 /// The cutter on every rapid move (G0) against the stock as cut so far: each one's first
 /// contact, as holder_collisions lists them.
 nlohmann::json rapids_through_stock(const cam::Program& program, const sweep::Body& cutter,
-                                    const cam::Stock& stock, double tol, std::size_t& cells);
+                                    const cam::Stock& stock, const cam::CutIndex& cut, double tol,
+                                    std::size_t& cells);
 
 /// The cutter, and the holder when given, against each fixture (never cut) over every
 /// move: each move's first contact, as holder_collisions lists them, `with` naming the

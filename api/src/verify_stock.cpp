@@ -43,7 +43,7 @@ struct Cell {
 cam::CutIndex::Near value_at(const cam::CutIndex& cut, const cam::Stock& stock,
                              const Eigen::Vector3d& x, double eps, double& depth) {
   depth = stock.depth(x);
-  const double slack = 1e-12 * (1 + x.cwiseAbs().maxCoeff());
+  const double slack = cam::detail::margin(x);
   cam::CutIndex::Near n;
   if (depth > 0) {
     n = cut.distance(x, eps, depth, true);
@@ -71,7 +71,7 @@ void evaluate(Cell& cell, const cam::CutIndex& cut, const cam::Program& program,
   cell.settled = n.settled;
   queries += n.queries;
   cell.area = 0.5 * (cell.b - cell.a).cross(cell.c - cell.a).norm();
-  const double slack = 1e-12 * (1 + g.cwiseAbs().maxCoeff());
+  const double slack = cam::detail::margin(g);
   cell.v_max = up(stock.depth_max(cell.a, cell.b, cell.c) + slack);
   if (cell.cut && program.moves[cell.move].kind != cam::Move::Kind::arc)
     cell.v_max = std::min(
@@ -155,9 +155,8 @@ std::vector<std::size_t> to_split(const std::vector<Cell>& cells, const Totals& 
 
 }  // namespace
 
-StockLeft stock_left(const cam::Program& program, const sweep::Body& cutter,
-                     const sweep::Body& part, const cam::Stock& stock, double tol) {
-  const cam::CutIndex cut(program, cutter);
+StockLeft stock_left(const cam::Program& program, const cam::CutIndex& cut, const sweep::Body& part,
+                     const cam::Stock& stock, double tol) {
   const sweep::TriangleMesh& mesh = part.mesh;
   std::vector<Cell> cells(mesh.triangles.size());
   for (std::size_t i = 0; i < cells.size(); ++i) {

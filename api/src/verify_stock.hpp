@@ -17,8 +17,8 @@ inline constexpr std::size_t kStockMeanCells = std::size_t(1) << 17;
 /// part's triangles split in four, each cell's value at its centre within tol / 4 and the
 /// value 1-Lipschitz over the cell, until the largest is within tol and the mean within tol
 /// or the cells run out; then the value at every vertex of the part's mesh.
-StockLeft stock_left(const cam::Program& program, const sweep::Body& cutter,
-                     const sweep::Body& part, const cam::Stock& stock, double tol);
+StockLeft stock_left(const cam::Program& program, const cam::CutIndex& cut, const sweep::Body& part,
+                     const cam::Stock& stock, double tol);
 
 nlohmann::json stock_json(const StockLeft& s);
 

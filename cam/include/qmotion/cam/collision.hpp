@@ -50,13 +50,9 @@ class ContactSearch {
         target_(target),
         cut_(cut),
         tol_(tol) {
+    box_ = cores_box(body);
     top_ = HUGE_VAL;
-    for (const Core& c : body) {
-      const double r = c.r_out + c.rc;
-      box_.extend(Eigen::Vector3d(-r, -r, c.z0 - c.rc));
-      box_.extend(Eigen::Vector3d(r, r, c.z1 + c.rc));
-      top_ = std::min(top_, c.z1);
-    }
+    for (const Core& c : body) top_ = std::min(top_, c.z1);
     // A straight move up the tool's axis after another move: the body is the cutter, and the
     // instance where the move starts was cut (the move before ended there).
     is_cutter_ = retract;
@@ -123,7 +119,7 @@ class ContactSearch {
         hi = (b.max() + pm).array() + grow;
       }
       const Eigen::Vector3d c = 0.5 * (lo + hi);
-      const double r = up(0.5 * (hi - lo).norm()) + slack(c);
+      const double r = up(0.5 * (hi - lo).norm()) + margin(c);
       const double depth = target_.body ? up(target_.depth(c) + r) : target_.depth_max(lo, hi);
       if (depth <= 0) continue;
       if (cut_) {  // cut away by t0: deeper than r in what was cut
@@ -156,7 +152,7 @@ class ContactSearch {
           k < 0 ? b.center() : b.corner(static_cast<Eigen::AlignedBox3d::CornerType>(k));
       if (cutter_distance(body_, y) > 0) continue;
       const Eigen::Vector3d x = p + y;
-      double depth = target_.depth(x) - slack(x);
+      double depth = target_.depth(x) - margin(x);
       if (!(depth > 0)) continue;
       if (cut_) {
         const CutIndex::Near n =
@@ -174,8 +170,6 @@ class ContactSearch {
   /// How much of this move counts as cut by t: up to t for a body the cutter carries, none
   /// for the cutter itself (its instance at t would hold every point of it).
   double own(double t) const { return is_cutter_ ? 0.0 : t; }
-
-  static double slack(const Eigen::Vector3d& x) { return 1e-12 * (1 + x.cwiseAbs().maxCoeff()); }
 
   const Move& m_;
   ArcShape arc_;

@@ -80,6 +80,10 @@ struct GougeCell {
   bool operator<(const GougeCell& o) const { return upper < o.upper; }
 };
 
+/// The rounding of one distance query at x: a few ulps of the coordinates' size
+/// (docs/guide/verify.md, "Rounding").
+inline double margin(const Eigen::Vector3d& x) { return 1e-12 * (1 + x.cwiseAbs().maxCoeff()); }
+
 /// Whether the box [lo, hi] meets the annulus r_in <= rho <= r_out (in x, y).
 inline bool meets_annulus(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, const Core& c) {
   const double nx = std::max({lo.x(), -hi.x(), 0.0}), ny = std::max({lo.y(), -hi.y(), 0.0});
@@ -164,10 +168,6 @@ class GougeSearch {
     }
     return axis;
   }
-
-  /// The rounding of one distance query: a few ulps of the coordinates' size
-  /// (docs/guide/verify.md, "Rounding").
-  static double margin(const Eigen::Vector3d& x) { return 1e-12 * (1 + x.cwiseAbs().maxCoeff()); }
 
   /// The cell's bound, and its witness. Every point of the cutter in the cell lies within
   /// e + rc of y = p(tm) + centre, e = speed (t1 - t0) / 2 + |hi - lo| / 2, and -sd_part is

@@ -41,8 +41,6 @@ struct Stock {
     if (body) return HUGE_VAL;
     return std::min((hi - box.min()).minCoeff(), (box.max() - lo).minCoeff());
   }
-  /// A box holding the stock.
-  Eigen::AlignedBox3d bounds() const;
 };
 
 /// The signed distance from y (the cutter's frame: tip at the origin, axis +z) to the
@@ -126,17 +124,25 @@ class CutIndex {
   std::vector<Node> nodes_;
 };
 
+namespace detail {
+
+/// A box holding the cores grown by their rc (the body's points about the tool tip).
+inline Eigen::AlignedBox3d cores_box(const std::vector<Core>& cores) {
+  Eigen::AlignedBox3d b;
+  for (const Core& c : cores) {
+    const double r = c.r_out + c.rc;
+    b.extend(Eigen::Vector3d(-r, -r, c.z0 - c.rc));
+    b.extend(Eigen::Vector3d(r, r, c.z1 + c.rc));
+  }
+  return b;
+}
+
+}  // namespace detail
+
 /// The least distance from x to the box (0 inside), rounded down.
 inline double box_distance(const Eigen::Vector3d& x, const Eigen::AlignedBox3d& b) {
   const Eigen::Vector3d d = (b.min() - x).cwiseMax(x - b.max()).cwiseMax(Eigen::Vector3d::Zero());
   return kernel::down(kernel::down(d.norm()) * (1 - 1e-15));
-}
-
-inline Eigen::AlignedBox3d Stock::bounds() const {
-  if (!body) return box;
-  Eigen::AlignedBox3d b;
-  for (const Eigen::Vector3d& v : body->mesh.vertices) b.extend(v);
-  return b;
 }
 
 inline CutIndex::CutIndex(const Program& program, const sweep::Body& cutter)
@@ -144,13 +150,8 @@ inline CutIndex::CutIndex(const Program& program, const sweep::Body& cutter)
   // The bull's flat core up to the side core's top: the body is then convex (no dent
   // between the side's rounded top and the core's flat one), as move_upper needs.
   if (cutter.kind == sweep::Body::Kind::bull_cutter) cores_[0].z1 += cutter.rc;
-  Eigen::AlignedBox3d reach;  // the cutter's points about its tip
-  for (const detail::Core& c : cores_) {
-    const double r = c.r_out + c.rc;
-    depth_bound_ = std::max(depth_bound_, r);
-    reach.extend(Eigen::Vector3d(-r, -r, c.z0 - c.rc));
-    reach.extend(Eigen::Vector3d(r, r, c.z1 + c.rc));
-  }
+  const Eigen::AlignedBox3d reach = detail::cores_box(cores_);  // about the tip
+  for (const detail::Core& c : cores_) depth_bound_ = std::max(depth_bound_, c.r_out + c.rc);
   moves_.reserve(program.moves.size());
   for (std::size_t i = 0; i < program.moves.size(); ++i) {
     const Move& m = program.moves[i];
@@ -200,7 +201,7 @@ inline double CutIndex::move_upper(std::size_t move, const Eigen::Vector3d& x) c
       best = std::min(best, fd);
     }
   }
-  return kernel::up(best + 1e-12 * (1 + x.cwiseAbs().maxCoeff()));
+  return kernel::up(best + detail::margin(x));
 }
 
 inline int CutIndex::build(std::size_t first, std::size_t count) {
@@ -243,7 +244,7 @@ inline void CutIndex::move_distance(const Leaf& leaf, const Eigen::Vector3d& x, 
     double bound, t0, t1;
     bool operator<(const Span& o) const { return bound > o.bound; }
   };
-  const double slack = 1e-12 * (1 + x.cwiseAbs().maxCoeff());
+  const double slack = detail::margin(x);
   auto eval = [&](double t0, double t1) {
     const double t = 0.5 * (t0 + t1);
     double d = cutter_distance(cores_, x - position(*leaf.move, leaf.arc, t));
@@ -280,7 +281,7 @@ inline void CutIndex::convex_distance(const Leaf& leaf, const Eigen::Vector3d& x
                                       double t_end, Near& near, double& lower) const {
   using kernel::down;
   using kernel::up;
-  const double slack = 1e-12 * (1 + x.cwiseAbs().maxCoeff());
+  const double slack = detail::margin(x);
   auto f = [&](double t) {
     const double d = std::max(cutter_distance(cores_, x - position(*leaf.move, leaf.arc, t)), 0.0);
     ++near.queries;
