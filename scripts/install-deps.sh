@@ -10,9 +10,9 @@
 #           example, FreeCAD for the interop test, and
 #           clang with libclang-rt-14-dev for scripts/test-sanitized.sh: sanitizers, libFuzzer;
 #           linuxcnc-uspace for its rs274 G-code interpreter; Blender for the glTF test, and
-#           Chromium for the viewer's test; OpenVDB for the swept-volume peer benchmark; then
-#           the npm packages of tests/interop from their lock file: the Khronos glTF
-#           validator and puppeteer-core).
+#           Chromium for the viewer's test; OpenVDB for the swept-volume and verify peer
+#           benchmarks and FCL for verify's; then the npm packages of tests/interop from
+#           their lock file: the Khronos glTF validator and puppeteer-core).
 set -euo pipefail
 
 packages=(
@@ -27,7 +27,7 @@ packages=(
 command -v npm >/dev/null || packages+=(nodejs npm)
 if [[ "${1:-}" == "--test" ]]; then
   packages+=(googletest libgtest-dev libgmock-dev libbenchmark-dev clang-format git python3 python3-pytest python3-distributed python3-pip python3-venv python3-setuptools python3-wheel freecad-python3
-    clang libclang-rt-14-dev linuxcnc-uspace time blender chromium libopenvdb-dev)
+    clang libclang-rt-14-dev linuxcnc-uspace time blender chromium libopenvdb-dev libfcl-dev)
 fi
 
 missing=()

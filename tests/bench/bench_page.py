@@ -117,6 +117,36 @@ def counters(b):
     return ", ".join(out)
 
 
+VERIFY_PEERS_TEXT = (
+    "`tests/bench/verify_peers`: `qmotion verify` against what a CAM programmer has without "
+    "it. Gouges: the ball stamped at N instants of every block, its depth at each stamp exact "
+    "(its radius less its centre's signed distance to the part), the peer at its best; a "
+    "voxel grid of the 100 x 100 mm part at T would hold about 10^8 voxels. Stock left: "
+    "OpenVDB's in-process stock, the stock's level set less the ball's at N stamps spread "
+    "evenly along the program (`csgDifference`), sampled trilinearly at 400 x 400 points of "
+    "the part's top. Holder collisions: FCL's `continuousCollide` of a cylinder and a box "
+    "with each of its solvers and motions, each run in a child process (two of its modes can "
+    "stop on an assertion inside its GJK); the truth is worked out apart from both programs "
+    "(the distance from the holder's axis to the stock's rectangle is convex along a straight "
+    "move). Late is worse than early: a contact reported late by d mm lets the holder in by "
+    "up to d mm first.")
+
+
+def peer_tables(a, build, name):
+    """The Markdown tables a peer program prints (its one short case under
+    --volume-peer-smoke)."""
+    print("running %s ..." % name, file=sys.stderr)
+    if cache_value(a.build, "QMOTION_WITH_CGAL") == "OFF":
+        return "Not measured: this build has no CGAL (-DQMOTION_WITH_CGAL=OFF)."
+    exe = os.path.join(build, "tests", "bench", name)
+    if not os.path.exists(exe):
+        sys.exit("%s: not built (it needs libopenvdb-dev and libfcl-dev)" % exe)
+    r = run([exe] + (["--smoke"] if a.volume_peer_smoke else []), cwd=a.build)
+    if r.returncode != 0:
+        sys.exit("%s failed:\n%s" % (name, r.stderr))
+    return r.stdout.strip()
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--build", required=True)
@@ -125,7 +155,7 @@ def main():
     ap.add_argument("--programs", default=",".join(PROGRAMS))
     ap.add_argument("--viewer-runs", default="31")
     ap.add_argument("--volume-peer-smoke", action="store_true",
-                    help="run openvdb_peer's one short case and a two-file batch only (CTest)")
+                    help="run the peer programs' short cases and a two-file batch only (CTest)")
     a = ap.parse_args()
     root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
     commit = run(["git", "rev-parse", "--short=12", "HEAD"], cwd=root).stdout.strip()
@@ -157,17 +187,8 @@ def main():
         if v.returncode != 0:
             sys.exit("viewer_bench.py failed:\n%s%s" % (v.stdout, v.stderr))
         viewer = v.stdout.strip()
-    print("running openvdb_peer ...", file=sys.stderr)
-    peer_exe = os.path.join(build, "tests", "bench", "openvdb_peer")
-    if cache_value(a.build, "QMOTION_WITH_CGAL") == "OFF":
-        volume_peer = "Not measured: this build has no CGAL (-DQMOTION_WITH_CGAL=OFF)."
-    else:
-        if not os.path.exists(peer_exe):
-            sys.exit("%s: not built (it needs libopenvdb-dev)" % peer_exe)
-        vdb = run([peer_exe] + (["--smoke"] if a.volume_peer_smoke else []), cwd=a.build)
-        if vdb.returncode != 0:
-            sys.exit("openvdb_peer failed:\n%s" % vdb.stderr)
-        volume_peer = vdb.stdout.strip()
+    volume_peer = peer_tables(a, build, "openvdb_peer")
+    verify_peer = peer_tables(a, build, "verify_peers")
     print("running batch_bench.py ...", file=sys.stderr)
     batch = run([sys.executable, os.path.join(root, "tests", "bench", "batch_bench.py"), build]
                 + (["--smoke"] if a.volume_peer_smoke else []))
@@ -224,6 +245,8 @@ def main():
               "vertex distance is the largest distance to the swept volume over at most 4 000 "
               "vertices (an upper bound: the body placed at the best time found).",
               "", volume_peer, ""]
+    lines += ["## Verification against stamping, OpenVDB and FCL", "", VERIFY_PEERS_TEXT, "",
+              verify_peer, ""]
     lines += ["## Batches on a Dask cluster", "",
               "`tests/bench/batch_bench.py`: `examples/python/batch_dask.py` over the 10 pose "
               "files of `tests/data/poses` (interpolate, export the sweep of `circle:3` as "

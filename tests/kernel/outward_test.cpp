@@ -100,4 +100,27 @@ TEST(Outward, GrowAndStepsAreOutward) {
   EXPECT_EQ(m.hi, 3.0);
 }
 
+/// a + b against c decided exactly: on random sums, and where fl(a + b) == c hides which
+/// side the exact sum is on, the case round to nearest gets wrong.
+TEST(Outward, SumComparisonsAreExact) {
+  using qmotion::kernel::sum_at_least;
+  using qmotion::kernel::sum_at_most;
+  const double tiny = std::ldexp(1.0, -60);
+  EXPECT_EQ(1.0 + tiny, 1.0);                 // the sum rounds onto c...
+  EXPECT_TRUE(sum_at_least(1.0, tiny, 1.0));  // ...from above
+  EXPECT_FALSE(sum_at_most(1.0, tiny, 1.0));
+  EXPECT_FALSE(sum_at_least(1.0, -tiny, 1.0));  // ...from below
+  EXPECT_TRUE(sum_at_most(1.0, -tiny, 1.0));
+  EXPECT_TRUE(sum_at_least(-5.0, 10.0, 5.0));  // exact sums both ways
+  EXPECT_TRUE(sum_at_most(-5.0, 10.0, 5.0));
+  std::mt19937_64 g(17);
+  for (int k = 0; k < 100000; ++k) {
+    const double a = random_double(g), b = random_double(g);
+    const double c = k % 2 ? a + b : random_double(g);
+    const Q exact = Q(a) + Q(b);
+    ASSERT_EQ(sum_at_least(a, b, c), exact >= Q(c)) << a << " " << b << " " << c;
+    ASSERT_EQ(sum_at_most(a, b, c), exact <= Q(c)) << a << " " << b << " " << c;
+  }
+}
+
 }  // namespace

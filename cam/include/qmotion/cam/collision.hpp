@@ -17,14 +17,15 @@ namespace qmotion::cam {
 
 /// A body's first contact over one move. A contact is a point of the body strictly inside
 /// the target: inside the stock and outside all that was cut up to that instant, or inside
-/// the part. tol is the resolution: the first contact's time interval is at most as long as
-/// the tool takes to move tol / 4, and cells smaller than tol / 8 that are neither proven
-/// clear nor hold a contact make the interval undecided.
+/// the part. tol is the resolution: a time interval is halved until the tool moves at most
+/// tol / 4 in it, and cells smaller than tol / 8 that are neither proven clear nor hold a
+/// contact leave the interval undecided. A contact that starts by grazing shows a witness
+/// only a little later, so the search passes up to kUndecidedRun undecided intervals.
 struct Contact {
   enum class Kind { clear, contact, undecided };
   Kind kind = Kind::clear;
   /// contact: the first lies in [t_lo, t_hi] (none before t_lo, one at t_hi); undecided:
-  /// the first interval neither proven clear nor holding a contact.
+  /// none before t_lo, and no interval up to t_hi proven clear or holding a contact.
   double t_lo = 0, t_hi = 0;
   Eigen::Vector3d point = Eigen::Vector3d::Zero();  ///< contact: the body's point at t_hi
   double depth = 0;                                 ///< contact: its depth, at least
@@ -33,8 +34,44 @@ struct Contact {
 
 /// Cells one time interval may split the body into.
 inline constexpr std::size_t kContactCells = std::size_t(1) << 14;
+/// Undecided intervals at the finest resolution a search passes, looking for a witness.
+inline constexpr int kUndecidedRun = 64;
 
 namespace detail {
+
+/// The distance between the boxes [lo, hi] and r in the plane.
+inline double box_rect_distance(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi,
+                                const Eigen::AlignedBox2d& r) {
+  const Eigen::Vector2d gap = (r.min() - hi).cwiseMax(lo - r.max()).cwiseMax(0.0);
+  return gap.norm();
+}
+
+/// The distance between the segment ab and the box r in the plane: 0 where they meet, else
+/// reached at an end of the segment or at a corner of the box.
+inline double segment_rect_distance(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                                    const Eigen::AlignedBox2d& r) {
+  // Clip ab to the box's slabs (Liang and Barsky).
+  double t0 = 0, t1 = 1;
+  const Eigen::Vector2d d = b - a;
+  for (int k = 0; k < 2 && t0 <= t1; ++k) {
+    if (d(k) == 0) {
+      if (a(k) < r.min()(k) || a(k) > r.max()(k)) t1 = -1;
+      continue;
+    }
+    const double u = (r.min()(k) - a(k)) / d(k), v = (r.max()(k) - a(k)) / d(k);
+    t0 = std::max(t0, std::min(u, v));
+    t1 = std::min(t1, std::max(u, v));
+  }
+  if (t0 <= t1) return 0;
+  double best = std::min(box_rect_distance(a, a, r), box_rect_distance(b, b, r));
+  const double dd = d.squaredNorm();
+  for (int k = 0; k < 4; ++k) {
+    const Eigen::Vector2d c = r.corner(static_cast<Eigen::AlignedBox2d::CornerType>(k));
+    const double t = dd > 0 ? std::clamp((c - a).dot(d) / dd, 0.0, 1.0) : 0.0;
+    best = std::min(best, (a + t * d - c).norm());
+  }
+  return best;
+}
 
 class ContactSearch {
  public:
@@ -52,7 +89,10 @@ class ContactSearch {
         tol_(tol) {
     box_ = cores_box(body);
     top_ = HUGE_VAL;
-    for (const Core& c : body) top_ = std::min(top_, c.z1);
+    for (const Core& c : body) {
+      top_ = std::min(top_, c.z1);
+      cylinders_ = cylinders_ && c.r_in == 0 && c.rc == 0 && !c.solid;
+    }
     // A straight move up the tool's axis after another move: the body is the cutter, and the
     // instance where the move starts was cut (the move before ended there).
     is_cutter_ = retract;
@@ -63,25 +103,30 @@ class ContactSearch {
 
   /// Time intervals, earliest first: a proven one is passed, another halved until the
   /// tool moves at most tol / 4 in it.
+  /// An interval that stays undecided at the finest resolution is passed too, up to
+  /// kUndecidedRun of them: a contact that starts by grazing deepens, and a later interval's
+  /// witness bounds the first contact from above, the undecided one's start from below.
   Contact run() {
     Contact out;
     std::vector<std::pair<double, double>> todo{{0.0, 1.0}};
+    int undecided = 0;
     while (!todo.empty()) {
       const auto [t0, t1] = todo.back();
       todo.pop_back();
       const Contact::Kind v = classify(t0, t1, out);
       if (v == Contact::Kind::clear) continue;
       if (speed_ * (t1 - t0) <= tol_ / 4 || t1 - t0 < 1e-12) {
+        if (undecided == 0) out.t_lo = t0;
         out.kind = v;
-        out.t_lo = t0;
         out.t_hi = t1;
-        return out;
+        if (v == Contact::Kind::contact || ++undecided > kUndecidedRun) return out;
+        continue;
       }
       const double tm = 0.5 * (t0 + t1);
       todo.emplace_back(tm, t1);
       todo.emplace_back(t0, tm);
     }
-    out.kind = Contact::Kind::clear;
+    if (undecided == 0) out.kind = Contact::Kind::clear;
     return out;
   }
 
@@ -96,6 +141,16 @@ class ContactSearch {
     // Back up the column the move before came down: every instance is one of that move's.
     if (retract_ && p1.z() - m_.from.z() <= covered_) return Contact::Kind::clear;
     const double grow = straight ? 0.0 : up(speed_ * up(0.5 * (t1 - t0)));
+    // Where the tool's tip is over [t0, t1].
+    const Eigen::Vector3d tip_lo = straight ? p0.cwiseMin(p1) : Eigen::Vector3d(pm.array() - grow);
+    const Eigen::Vector3d tip_hi = straight ? p0.cwiseMax(p1) : Eigen::Vector3d(pm.array() + grow);
+    const Eigen::Vector2d seg[2] = {p0.head<2>(), p1.head<2>()};
+    const Eigen::Vector2d* segment = straight ? seg : nullptr;
+    if (round_clear(tip_lo, tip_hi, segment, -HUGE_VAL, HUGE_VAL)) return Contact::Kind::clear;
+    if (round_witness(p1, t1, out)) return Contact::Kind::contact;
+    // Upright cylinders and a box never cut: the two tests above are exact but for the
+    // tip's reach over [t0, t1], so time is halved instead of the body.
+    if (cylinders_ && !target_.body && !cut_) return Contact::Kind::undecided;
     std::vector<Eigen::AlignedBox3d> cells{box_};
     bool undecided = false;
     std::size_t used = 0;
@@ -111,6 +166,7 @@ class ContactSearch {
       // instance it started from: every cutter's cross-section widens (or stays) upwards
       // up to its cores' top.
       if (retract_ && b.max().z() + (p1.z() - m_.from.z()) <= top_) continue;
+      if (round_clear(tip_lo, tip_hi, segment, b.min().z(), b.max().z())) continue;
       // Every point of the cell over [t0, t1] lies in [lo, hi] (a segment's points: the box
       // of its ends; an arc's: within its reach of the middle).
       Eigen::Vector3d lo = b.min() + p0.cwiseMin(p1), hi = b.max() + p0.cwiseMax(p1);
@@ -142,6 +198,55 @@ class ContactSearch {
     return undecided ? Contact::Kind::undecided : Contact::Kind::clear;
   }
 
+  /// For a box target: every core that reaches heights [z0, z1] of the body is proven
+  /// outside the box's interior while the tip stays in [lo, hi]. A core's points lie within
+  /// r_out + rc of its axis: the box is missed when that disc, moved over [lo, hi], misses
+  /// its rectangle, or the core's heights miss its heights. Exact for a round body, where
+  /// box cells would need to follow its curvature.
+  bool round_clear(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
+                   const Eigen::Vector2d* segment, double z0, double z1) const {
+    using kernel::down;
+    using kernel::sum_at_least;
+    using kernel::sum_at_most;
+    using kernel::up;
+    if (target_.body) return false;
+    const Eigen::AlignedBox3d& s = target_.box;
+    const Eigen::AlignedBox2d rect(s.min().head<2>(), s.max().head<2>());
+    // A straight move's tip runs along a segment; an arc's stays in [lo, hi].
+    const double d = down(segment ? segment_rect_distance(segment[0], segment[1], rect)
+                                  : box_rect_distance(lo.head<2>(), hi.head<2>(), rect));
+    for (const Core& c : body_) {
+      const double c0 = std::max(c.rc > 0 ? down(c.z0 - c.rc) : c.z0, z0);
+      const double c1 = std::min(c.rc > 0 ? up(c.z1 + c.rc) : c.z1, z1);
+      if (c0 > c1) continue;  // not at these heights
+      if (sum_at_most(hi.z(), c1, s.min().z()) || sum_at_least(lo.z(), c0, s.max().z())) continue;
+      if (d >= up(up(c.r_out + c.rc) + margin(s.center()))) continue;
+      return false;
+    }
+    return true;
+  }
+
+  /// For a box target: a core's point inside the box with the tip at p, if there is one
+  /// at the heights both share: on the way from the axis to the rectangle's nearest point,
+  /// half-way between that point and the core's rim (inside the rectangle: beyond its
+  /// nearest point, away from the axis), or on the axis when it is over the rectangle.
+  bool round_witness(const Eigen::Vector3d& p, double t1, Contact& out) const {
+    if (target_.body) return false;
+    const Eigen::AlignedBox3d& s = target_.box;
+    const Eigen::Vector2d c = p.head<2>();
+    const Eigen::Vector2d q = c.cwiseMax(s.min().head<2>()).cwiseMin(s.max().head<2>());
+    const double d = (q - c).norm();
+    for (const Core& k : body_) {
+      const double z0 = std::max(p.z() + k.z0, s.min().z()),
+                   z1 = std::min(p.z() + k.z1, s.max().z());
+      const double R = k.r_out + k.rc;
+      if (!(z0 < z1) || !(d < R)) continue;
+      const Eigen::Vector2d w = d > 0 ? Eigen::Vector2d(c + (q - c) * (0.5 * (d + R) / d)) : c;
+      if (witness_at(Eigen::Vector3d(w.x(), w.y(), 0.5 * (z0 + z1)), p, t1, out)) return true;
+    }
+    return false;
+  }
+
   /// A point of the body among the cell's centre and corners (a contact first shows at a
   /// face or an edge of the body) that is, at t1, inside the target and outside what was cut
   /// up to t1.
@@ -150,21 +255,26 @@ class ContactSearch {
     for (int k = -1; k < 8; ++k) {
       const Eigen::Vector3d y =
           k < 0 ? b.center() : b.corner(static_cast<Eigen::AlignedBox3d::CornerType>(k));
-      if (cutter_distance(body_, y) > 0) continue;
-      const Eigen::Vector3d x = p + y;
-      double depth = target_.depth(x) - margin(x);
-      if (!(depth > 0)) continue;
-      if (cut_) {
-        const CutIndex::Near n =
-            cut_->distance(x, std::min(tol_ / 4, depth / 2), depth, false, index_, own(t1), 0);
-        depth = std::min(depth, n.lower);
-        if (!(depth > 0)) continue;
-      }
-      out.point = x;
-      out.depth = depth;
-      return true;
+      if (witness_at(p + y, p, t1, out)) return true;
     }
     return false;
+  }
+
+  /// x (the tip at p at t1) is a point of the body inside the target and outside what was cut.
+  bool witness_at(const Eigen::Vector3d& x, const Eigen::Vector3d& p, double t1,
+                  Contact& out) const {
+    if (cutter_distance(body_, x - p) > 0) return false;
+    double depth = target_.depth(x) - margin(x);
+    if (!(depth > 0)) return false;
+    if (cut_) {
+      const CutIndex::Near n =
+          cut_->distance(x, std::min(tol_ / 4, depth / 2), depth, false, index_, own(t1), 0);
+      depth = std::min(depth, n.lower);
+      if (!(depth > 0)) return false;
+    }
+    out.point = x;
+    out.depth = depth;
+    return true;
   }
 
   /// How much of this move counts as cut by t: up to t for a body the cutter carries, none
@@ -183,6 +293,7 @@ class ContactSearch {
   double top_ = 0;
   bool retract_ = false;
   bool is_cutter_ = false;  ///< the body is the cutter
+  bool cylinders_ = true;   ///< every core a solid upright cylinder
   double covered_ = 0;      ///< how far up the axis the move before swept the cutter
 };
 

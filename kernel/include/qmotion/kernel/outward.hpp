@@ -21,6 +21,22 @@ inline double up(double x) { return std::nextafter(x, HUGE_VAL); }
 /// The next double below x.
 inline double down(double x) { return std::nextafter(x, -HUGE_VAL); }
 
+/// Whether a + b >= c (at_least) or a + b <= c, decided exactly for finite doubles. Rounding
+/// to nearest is monotone, so fl(a + b) > c implies a + b >= c; at fl(a + b) == c, the
+/// rounding error of the sum (Knuth's TwoSum, exact) decides.
+inline double sum_error(double a, double b, double s) {
+  const double bb = s - a;
+  return (a - (s - bb)) + (b - bb);
+}
+inline bool sum_at_least(double a, double b, double c) {
+  const double s = a + b;
+  return s > c || (s == c && sum_error(a, b, s) >= 0);
+}
+inline bool sum_at_most(double a, double b, double c) {
+  const double s = a + b;
+  return s < c || (s == c && sum_error(a, b, s) <= 0);
+}
+
 /// A closed interval [lo, hi] of reals that holds an exact value.
 struct Interval {
   double lo = 0, hi = 0;
