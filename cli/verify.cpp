@@ -25,11 +25,13 @@ Command add_verify(CLI::App& app) {
                   "cutter:ball,D,L or cutter:bull,D,rc,L (mm)")
       ->required();
   sub->add_option("--part", o->part,
-                  "The finished part: a closed .stl, .obj or .ply mesh in the program's frame (mm)")
+                  "The finished part in the program's frame (mm): a closed .stl, .obj or .ply "
+                  "mesh, or a STEP or IGES solid (meshed within T/4)")
       ->required();
   sub->add_option("--stock", o->stock,
-                  "The raw stock: box:x0,y0,z0,x1,y1,z1 (two opposite corners, mm) or a closed "
-                  ".stl, .obj or .ply mesh; reports the stock left on the part");
+                  "The raw stock: box:x0,y0,z0,x1,y1,z1 (two opposite corners, mm), a closed "
+                  ".stl, .obj or .ply mesh, or a STEP or IGES solid; reports the stock left on "
+                  "the part");
   sub->add_option("--map", o->map,
                   "Write the part coloured by stock left (blue) and gouge (red): .ply with "
                   "vertex colours, or .svg or .png seen from above; needs --stock");
@@ -38,8 +40,9 @@ Command add_verify(CLI::App& app) {
                   "reports the first instant of each move at which it enters the stock as cut "
                   "so far (with --stock) or the part");
   sub->add_option("--fixture", o->fixtures,
-                  "A fixture (clamp, vice), repeatable: box:x0,y0,z0,x1,y1,z1 or a closed .stl, "
-                  ".obj or .ply mesh; reports where the cutter or the holder first touches it");
+                  "A fixture (clamp, vice), repeatable: box:x0,y0,z0,x1,y1,z1, a closed .stl, "
+                  ".obj or .ply mesh, or a STEP or IGES solid; reports where the cutter or the "
+                  "holder first touches it");
   sub->add_option("--tol", o->tol, "Width of every certified depth interval, in mm (default 0.01)");
   sub->add_option("-o,--output", o->output, "Write the report to this .json file as well");
   return {sub, [o] {

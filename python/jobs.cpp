@@ -275,10 +275,11 @@ void bind_cam_jobs(py::module_& m) {
       py::arg("output") = "", py::arg("stock") = "", py::arg("map") = "", py::arg("holder") = "",
       py::arg("fixtures") = std::vector<std::string>{},
       "`qmotion verify`: whether a 3-axis G-code program (.ngc, .nc, .gcode, .tap, .cnc) "
-      "gouges part (a closed .stl/.obj/.ply mesh, mm) with tool (cutter:flat|ball,D,L or "
-      "cutter:bull,D,rc,L), certified at every instant of every move to within tol (mm, "
-      "default 0.01); output: a .json file for the report too; stock (box:x0,y0,z0,x1,y1,z1 "
-      "or a closed mesh): also the stock left on the part; map (.ply, .svg, .png): the part "
+      "gouges part (a closed .stl/.obj/.ply mesh or a STEP/IGES solid, meshed within tol/4; "
+      "mm) with tool (cutter:flat|ball,D,L or cutter:bull,D,rc,L), certified at every "
+      "instant of every move to within tol (mm, default 0.01); output: a .json file for the "
+      "report too; stock (box:x0,y0,z0,x1,y1,z1, a closed mesh or a solid): also the stock "
+      "left on the part; map (.ply, .svg, .png): the part "
       "coloured by it; holder (cylinder:r,h above the cutter's length): where it first enters "
       "the stock as cut so far or the part; fixtures (each as a stock): where the cutter or the "
       "holder first touches them. Returns the report dict: gouge (depth [lower, upper], "

@@ -39,12 +39,19 @@ sweep::Body read_cutter(const std::string& spec) {
   return c;
 }
 
-sweep::Body read_part(const std::string& spec) {
-  sweep::Body p = io::read_body(spec);
+sweep::Body read_part(const std::string& spec, double cad_deflection) {
+  sweep::Body p = io::read_body(spec, cad_deflection);
   if (p.kind != sweep::Body::Kind::mesh)
-    throw Error(Errc::invalid_input,
-                "--part '" + spec + "': verify needs the part as a closed .stl, .obj or .ply mesh");
+    throw Error(Errc::invalid_input, "--part '" + spec +
+                                         "': verify needs the part as a closed .stl, .obj or "
+                                         ".ply mesh, or a STEP or IGES solid");
   return p;
+}
+
+bool is_cad(const std::string& spec) {
+  const std::string e = io::lower_extension(spec);
+  return spec.find(':') == std::string::npos &&
+         (e == ".step" || e == ".stp" || e == ".igs" || e == ".iges");
 }
 
 }  // namespace
@@ -54,6 +61,7 @@ nlohmann::json VerifyReport::report() const {
   j["program"] = program;
   j["moves"] = {{"total", moves}, {"G0", traverses}, {"G1", feeds}, {"arcs", arcs}};
   j["tolerance"] = tolerance;
+  if (cad_deflection) j["cad_deflection"] = *cad_deflection;
   nlohmann::json g;
   g["depth"] = {gouge_lower, gouge_upper};
   g["certified"] = settled;
@@ -117,11 +125,16 @@ VerifyReport verify(const VerifyOptions& o) {
                                            "give the raw stock with --stock");
   }
   const sweep::Body cutter = read_cutter(o.tool);
-  const sweep::Body part = read_part(o.part);
+  // STEP and IGES solids are meshed within T / 4 (docs/guide/verify.md, "Parts").
+  const double cad = tol / 4;
+  const sweep::Body part = read_part(o.part, cad);
   const std::optional<cam::Stock> stock =
-      o.stock.empty() ? std::nullopt : std::optional<cam::Stock>(io::read_stock(o.stock));
+      o.stock.empty() ? std::nullopt
+                      : std::optional<cam::Stock>(io::read_stock(o.stock, "--stock", cad));
   std::vector<cam::Stock> fixtures;
-  for (const std::string& f : o.fixtures) fixtures.push_back(io::read_stock(f, "--fixture"));
+  for (const std::string& f : o.fixtures) fixtures.push_back(io::read_stock(f, "--fixture", cad));
+  const bool any_cad = is_cad(o.part) || is_cad(o.stock) ||
+                       std::any_of(o.fixtures.begin(), o.fixtures.end(), is_cad);
   std::optional<sweep::Body> holder;
   if (!o.holder.empty()) {
     holder = io::read_body(o.holder);
@@ -135,6 +148,7 @@ VerifyReport verify(const VerifyOptions& o) {
   r.program = o.program;
   r.tolerance = tol;
   r.moves = program.moves.size();
+  if (any_cad) r.cad_deflection = cad;
   std::vector<cam::Gouge> found(program.moves.size());
   tbb::parallel_for(std::size_t(0), program.moves.size(), [&](std::size_t i) {
     found[i] = cam::move_gouge(program.moves[i], cutter, part, tol);

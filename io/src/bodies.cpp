@@ -7,6 +7,7 @@
 #include <qmotion/io/atomic_file.hpp>
 #include <qmotion/io/bodies.hpp>
 #include <qmotion/io/json_number.hpp>
+#include <qmotion/io/occt.hpp>
 #include <qmotion/io/point_text.hpp>
 #include <qmotion/kernel/error.hpp>
 #include <sstream>
@@ -248,6 +249,22 @@ Body mesh_file_body(const std::string& path) {
                    path);
 }
 
+/// A STEP or IGES solid as OpenCASCADE meshes it within `deflection`, its faces' nodes
+/// welded where they coincide (the mesher shares a boundary edge's nodes between its faces).
+Body cad_file_body(const std::string& path, double deflection) {
+  const CadMesh c = mesh_cad(path, deflection);
+  Welder w;
+  for (const auto& t : c.triangles) {
+    const std::array<int, 3> v{w.add(t[0]), w.add(t[1]), w.add(t[2])};
+    if (v[0] != v[1] && v[1] != v[2] && v[0] != v[2]) w.mesh.triangles.push_back(v);
+  }
+  return mesh_body(std::move(w.mesh), path);
+}
+
+bool cad_extension(const std::string& e) {
+  return e == ".step" || e == ".stp" || e == ".igs" || e == ".iges";
+}
+
 }  // namespace
 
 Body mesh_body(sweep::TriangleMesh mesh, const std::string& label) {
@@ -302,7 +319,7 @@ void require_closed_oriented(const TriangleMesh& m, const std::string& label) {
                    " (triangles must turn counter-clockwise seen from outside; reverse them)");
 }
 
-Body read_body(const std::string& spec) {
+Body read_body(const std::string& spec, double cad_deflection) {
   const auto colon = spec.find(':');
   const std::string kind = spec.substr(0, colon);
   const std::string rest = colon == std::string::npos ? "" : spec.substr(colon + 1);
@@ -311,6 +328,7 @@ Body read_body(const std::string& spec) {
   const std::string e = lower_extension(spec);
   if (colon == std::string::npos && (e == ".stl" || e == ".obj" || e == ".ply"))
     return mesh_file_body(spec);
+  if (colon == std::string::npos && cad_extension(e)) return cad_file_body(spec, cad_deflection);
   // The shorthands: a name, then the sizes in the order the form gives them.
   struct Form {
     const char *name, *usage;
@@ -342,8 +360,8 @@ Body read_body(const std::string& spec) {
     throw Error(Errc::invalid_input,
                 "body '" + spec +
                     "': unknown body (expected sphere:r, box:a,b,c, cylinder:r,h, "
-                    "cutter:flat,D,L, cutter:ball,D,L, cutter:bull,D,rc,L, or an .stl, .obj or "
-                    ".ply mesh file)");
+                    "cutter:flat,D,L, cutter:ball,D,L, cutter:bull,D,rc,L, an .stl, .obj or "
+                    ".ply mesh file, or a STEP or IGES solid)");
   const auto v = parse_numbers(numbers, "body '" + spec + "'");
   expect_count(v, form->sizes.size(), spec, form->usage);
   b.kind = form->kind;
@@ -352,7 +370,7 @@ Body read_body(const std::string& spec) {
   return b;
 }
 
-cam::Stock read_stock(const std::string& spec, const std::string& option) {
+cam::Stock read_stock(const std::string& spec, const std::string& option, double cad_deflection) {
   cam::Stock stock;
   const std::string where = option + " '" + spec + "'";
   if (spec.rfind("box:", 0) == 0) {
@@ -369,10 +387,11 @@ cam::Stock read_stock(const std::string& spec, const std::string& option) {
     return stock;
   }
   const std::string e = lower_extension(spec);
-  if (e != ".stl" && e != ".obj" && e != ".ply")
-    throw Error(Errc::invalid_input,
-                where + ": expected box:x0,y0,z0,x1,y1,z1 or a closed .stl, .obj or .ply mesh");
-  stock.body = std::make_shared<Body>(read_body(spec));
+  if (e != ".stl" && e != ".obj" && e != ".ply" && !cad_extension(e))
+    throw Error(Errc::invalid_input, where +
+                                         ": expected box:x0,y0,z0,x1,y1,z1, a closed .stl, .obj "
+                                         "or .ply mesh, or a STEP or IGES solid");
+  stock.body = std::make_shared<Body>(read_body(spec, cad_deflection));
   return stock;
 }
 

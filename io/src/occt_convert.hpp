@@ -58,6 +58,13 @@ Handle(Geom_BSplineCurve) make_curve(const sweep::NurbsCurve<double>& c);
 sweep::NurbsSurface<double> from_occt(Handle(Geom_BSplineSurface) g);
 sweep::NurbsCurve<double> from_occt(Handle(Geom_BSplineCurve) g);
 
+/// The shape of a STEP (ext .step, .stp) or IGES (.igs, .iges) file, lengths in unit u;
+/// `file_units` gets the unit the file declares. prechecks: refuse a file whose entities
+/// failed to load (it may crash the transfer). Errc::invalid_input naming path when it
+/// cannot be read. Runs OpenCASCADE's parser: call it in a child process (isolated.hpp).
+TopoDS_Shape read_shape(const std::string& path, const std::string& ext, const UnitNames& u,
+                        bool prechecks, std::string& file_units);
+
 /// The text in lower case (file extensions).
 std::string lower(std::string s);
 

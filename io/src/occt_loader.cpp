@@ -2,6 +2,7 @@
 // its implementation in libqmotion_occt, loaded on first use (io/src/occt_plugin.hpp).
 #include <dlfcn.h>
 
+#include <cmath>
 #include <filesystem>
 #include <qmotion/io/atomic_file.hpp>
 #include <qmotion/io/occt.hpp>
@@ -148,6 +149,11 @@ CadGeometry read_cad_unchecked(const std::string& path, bool want_surface,
 }
 std::vector<std::array<Eigen::Vector3d, 3>> read_stl(const std::string& path) {
   return table().read_stl(path);
+}
+CadMesh mesh_cad(const std::string& path, double deflection, const std::string& units) {
+  if (!(deflection > 0) || !std::isfinite(deflection))
+    throw Error(Errc::internal, path + ": mesh_cad needs a positive deflection");
+  return table().mesh_cad(path, deflection, units);
 }
 
 void knots_to_distinct(const std::vector<double>& full, std::vector<double>& distinct,

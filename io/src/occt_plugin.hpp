@@ -33,6 +33,7 @@ CadGeometry read_cad(const std::string& path, bool want_surface, const std::stri
 CadGeometry read_cad_unchecked(const std::string& path, bool want_surface,
                                const std::string& units);
 std::vector<std::array<Eigen::Vector3d, 3>> read_stl(const std::string& path);
+CadMesh mesh_cad(const std::string& path, double deflection, const std::string& units);
 
 /// The table libqmotion_occt hands out. `abi` first: a library built from other sources is
 /// refused rather than called.
@@ -54,10 +55,11 @@ struct Table {
   CadGeometry (*read_cad)(const std::string&, bool, const std::string&);
   CadGeometry (*read_cad_unchecked)(const std::string&, bool, const std::string&);
   std::vector<std::array<Eigen::Vector3d, 3>> (*read_stl)(const std::string&);
+  CadMesh (*mesh_cad)(const std::string&, double, const std::string&);
 };
 
 /// Changed whenever Table or a type it passes changes.
-inline constexpr int kTableAbi = 1;
+inline constexpr int kTableAbi = 2;
 
 }  // namespace qmotion::io::plugin
 

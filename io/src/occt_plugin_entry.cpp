@@ -21,6 +21,7 @@ extern "C" const qmotion::io::plugin::Table* qmotion_occt_table() {
       &p::mesh_shell,
       &p::read_cad,
       &p::read_cad_unchecked,
-      &p::read_stl};
+      &p::read_stl,
+      &p::mesh_cad};
   return &table;
 }

@@ -238,6 +238,47 @@ void refuse_failed_load(XSControl_Reader& reader, const std::string& path, const
   }
 }
 
+}  // namespace
+
+TopoDS_Shape detail::read_shape(const std::string& path, const std::string& ext, const UnitNames& u,
+                                bool prechecks, std::string& file_units) {
+  quiet_occt();
+  TopoDS_Shape shape;
+  if (ext == ".step" || ext == ".stp") {
+    init_step_translator();
+    Interface_Static::SetCVal("xstep.cascade.unit", u.step);
+    UnitsMethods::SetCasCadeLengthUnit(u.mm);
+    STEPControl_Reader reader;
+    if (reader.ReadFile(path.c_str()) != IFSelect_RetDone)
+      throw Error(Errc::invalid_input, path + ": not a readable STEP file");
+    if (prechecks) refuse_failed_load(reader, path, "STEP");
+    TColStd_SequenceOfAsciiString len, ang, solid;
+    reader.FileUnits(len, ang, solid);
+    if (len.Length() > 0) file_units = lower(len.First().ToCString());
+    reader.TransferRoots();
+    shape = reader.OneShape();
+  } else if (ext == ".igs" || ext == ".iges") {
+    init_iges_translator();
+    Interface_Static::SetCVal("xstep.cascade.unit", u.step);
+    UnitsMethods::SetCasCadeLengthUnit(u.mm);
+    Interface_Static::SetIVal("read.iges.bspline.continuity", 0);  // keep C0 B-splines whole
+    IGESControl_Reader reader;
+    if (reader.ReadFile(path.c_str()) != IFSelect_RetDone)
+      throw Error(Errc::invalid_input, path + ": not a readable IGES file");
+    if (prechecks) refuse_failed_load(reader, path, "IGES");
+    const auto model = Handle(IGESData_IGESModel)::DownCast(reader.Model());
+    if (!model.IsNull() && !model->GlobalSection().UnitName().IsNull())
+      file_units = lower(model->GlobalSection().UnitName()->ToCString());
+    reader.TransferRoots();
+    shape = reader.OneShape();
+  } else {
+    throw Error(Errc::invalid_input, path + ": expected a .step, .stp, .igs or .iges file");
+  }
+  return shape;
+}
+
+namespace {
+
 /// read_cad's work, run in the child process: the counts, flags and units, which faces are
 /// planes, and the profile's wire; the B-splines OpenCASCADE made go to `surfaces` (one per
 /// face that is not a plane) and `curve_out`, for the calling process to convert.
@@ -245,40 +286,10 @@ CadGeometry read_cad_here(const std::string& path, bool want_surface, const std:
                           const UnitNames& u, bool prechecks,
                           std::vector<Handle(Geom_BSplineSurface)>& surfaces,
                           Handle(Geom_BSplineCurve) & curve_out) {
-  quiet_occt();
   CadGeometry g;
   TopoDS_Shape shape;
   try {
-    if (ext == ".step" || ext == ".stp") {
-      init_step_translator();
-      Interface_Static::SetCVal("xstep.cascade.unit", u.step);
-      UnitsMethods::SetCasCadeLengthUnit(u.mm);
-      STEPControl_Reader reader;
-      if (reader.ReadFile(path.c_str()) != IFSelect_RetDone)
-        throw Error(Errc::invalid_input, path + ": not a readable STEP file");
-      if (prechecks) refuse_failed_load(reader, path, "STEP");
-      TColStd_SequenceOfAsciiString len, ang, solid;
-      reader.FileUnits(len, ang, solid);
-      if (len.Length() > 0) g.file_units = lower(len.First().ToCString());
-      reader.TransferRoots();
-      shape = reader.OneShape();
-    } else if (ext == ".igs" || ext == ".iges") {
-      init_iges_translator();
-      Interface_Static::SetCVal("xstep.cascade.unit", u.step);
-      UnitsMethods::SetCasCadeLengthUnit(u.mm);
-      Interface_Static::SetIVal("read.iges.bspline.continuity", 0);  // keep C0 B-splines whole
-      IGESControl_Reader reader;
-      if (reader.ReadFile(path.c_str()) != IFSelect_RetDone)
-        throw Error(Errc::invalid_input, path + ": not a readable IGES file");
-      if (prechecks) refuse_failed_load(reader, path, "IGES");
-      const auto model = Handle(IGESData_IGESModel)::DownCast(reader.Model());
-      if (!model.IsNull() && !model->GlobalSection().UnitName().IsNull())
-        g.file_units = lower(model->GlobalSection().UnitName()->ToCString());
-      reader.TransferRoots();
-      shape = reader.OneShape();
-    } else {
-      throw Error(Errc::invalid_input, path + ": expected a .step, .stp, .igs or .iges file");
-    }
+    shape = read_shape(path, ext, u, prechecks, g.file_units);
     if (shape.IsNull()) throw Error(Errc::invalid_input, path + ": the file holds no geometry");
     g.valid = BRepCheck_Analyzer(shape).IsValid();
     for (TopExp_Explorer e(shape, TopAbs_FACE); e.More(); e.Next()) ++g.faces;

@@ -13,9 +13,11 @@
 namespace qmotion {
 
 struct VerifyOptions {
-  std::string program;        ///< G-code (.ngc, .nc, .gcode, .tap, .cnc)
-  std::string tool;           ///< cutter:flat,D,L, cutter:ball,D,L or cutter:bull,D,rc,L (mm)
-  std::string part;           ///< a closed .stl, .obj or .ply mesh in the program's frame (mm)
+  std::string program;  ///< G-code (.ngc, .nc, .gcode, .tap, .cnc)
+  std::string tool;     ///< cutter:flat,D,L, cutter:ball,D,L or cutter:bull,D,rc,L (mm)
+  /// The part in the program's frame (mm): a closed .stl, .obj or .ply mesh, or a STEP or
+  /// IGES solid (meshed by OpenCASCADE within T / 4).
+  std::string part;
   std::optional<double> tol;  ///< mm; default 0.01
   std::string output;         ///< the report (.json); empty: none written
   /// The raw stock: box:x0,y0,z0,x1,y1,z1 (two opposite corners, mm) or a closed mesh;
@@ -87,6 +89,9 @@ struct VerifyReport {
   /// With VerifyOptions::fixtures: each move's first contact of the cutter or the holder with
   /// each fixture, as reported.
   std::optional<nlohmann::json> fixtures;
+  /// When the part, the stock or a fixture is a STEP or IGES solid: the deflection (T / 4)
+  /// within which OpenCASCADE meshed it; the figures above are certified for the mesh.
+  std::optional<double> cad_deflection;
   std::size_t queries = 0;
   double seconds = 0;
   nlohmann::json report() const;
@@ -96,8 +101,9 @@ struct VerifyReport {
 /// every move (cam::move_gouge, the moves in parallel), each move to within the tolerance.
 /// Errc::invalid_input (no report written) naming the file, line or body for a program the
 /// G-code reader refuses, a program that turns a rotary axis (5-axis verification is not
-/// there yet), a tool that is not a cutter, a part that is not a closed mesh, and a bad
-/// tolerance; a stock that is neither a box nor a closed mesh, a map without a stock or
+/// there yet), a tool that is not a cutter, a part that is neither a closed mesh nor a STEP
+/// or IGES solid (io::mesh_cad), and a bad tolerance; a stock that is neither a box, a
+/// closed mesh nor such a solid, a map without a stock or
 /// of another format, a holder that is not a cylinder, and a fixture as a bad stock is.
 VerifyReport verify(const VerifyOptions& options);
 

@@ -120,6 +120,22 @@ struct CadGeometry {
 /// As with any fork, a multithreaded caller must not hold locks OpenCASCADE needs.
 CadGeometry read_cad(const std::string& path, bool want_surface, const std::string& units = "mm");
 
+/// The solids of a STEP or IGES file as OpenCASCADE's mesher (BRepMesh_IncrementalMesh)
+/// triangulates them: every node on the file's surfaces, every triangle within `deflection`
+/// of its face (absolute, in `units`) by the mesher's own measure, and counter-clockwise
+/// seen from outside. Planar faces are exact.
+struct CadMesh {
+  std::vector<std::array<Eigen::Vector3d, 3>> triangles;
+  double deflection = 0;  ///< the largest a curved face's triangulation reports (0: none)
+  int solids = 0, faces = 0, planar_faces = 0;
+  std::string file_units;  ///< the length unit the file declares
+};
+
+/// Reads and meshes a STEP or IGES solid in a child process (as read_cad). Errc::invalid_input
+/// naming the file when it cannot be read, holds no solid, is not closed or is invalid by
+/// OpenCASCADE's checker, or when a face stays farther than `deflection` from its triangles.
+CadMesh mesh_cad(const std::string& path, double deflection, const std::string& units = "mm");
+
 /// Full clamped knot vector <-> distinct knots and multiplicities (the OpenCASCADE/STEP/
 /// IGES convention); one conversion each way (STYLE §9).
 void knots_to_distinct(const std::vector<double>& full, std::vector<double>& distinct,
