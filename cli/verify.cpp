@@ -36,9 +36,10 @@ Command add_verify(CLI::App& app) {
                   "Write the part coloured by stock left (blue) and gouge (red): .ply with "
                   "vertex colours, or .svg or .png seen from above; needs --stock");
   sub->add_option("--holder", o->holder,
-                  "The tool holder, cylinder:r,h: radius r from the cutter's length up h (mm); "
-                  "reports the first instant of each move at which it enters the stock as cut "
-                  "so far (with --stock) or the part");
+                  "The tool holder (mm): cylinder:r,h, radius r from the cutter's length up h, "
+                  "or holder:r1,h1,r2,h2,..., cylinders stacked upwards from it; reports the "
+                  "first instant of each move at which it enters the stock as cut so far (with "
+                  "--stock) or the part");
   sub->add_option("--fixture", o->fixtures,
                   "A fixture (clamp, vice), repeatable: box:x0,y0,z0,x1,y1,z1, a closed .stl, "
                   ".obj or .ply mesh, or a STEP or IGES solid; reports where the cutter or the "

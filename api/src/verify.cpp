@@ -9,6 +9,7 @@
 #include <qmotion/io/atomic_file.hpp>
 #include <qmotion/io/bodies.hpp>
 #include <qmotion/io/gcode.hpp>
+#include <qmotion/io/point_text.hpp>
 #include <qmotion/kernel/error.hpp>
 
 #include "verify_collide.hpp"
@@ -46,6 +47,35 @@ sweep::Body read_part(const std::string& spec, double cad_deflection) {
                                          "': verify needs the part as a closed .stl, .obj or "
                                          ".ply mesh, or a STEP or IGES solid");
   return p;
+}
+
+/// --holder: cylinder:r,h, or holder:r1,h1,r2,h2,... (cylinders stacked upwards from the
+/// cutter's length: a collet nut, then the chuck's body, ...).
+detail::HolderSections read_holder(const std::string& spec) {
+  const std::string where = "--holder '" + spec + "'";
+  if (spec.rfind("holder:", 0) == 0) {
+    const std::vector<double> v = io::parse_numbers(spec.substr(7), where);
+    if (v.empty() || v.size() % 2 != 0)
+      throw Error(Errc::invalid_input, where +
+                                           ": expected holder:r1,h1,r2,h2,... (a radius and a "
+                                           "length for each section, mm), got " +
+                                           std::to_string(v.size()) + " numbers");
+    detail::HolderSections sections;
+    for (std::size_t k = 0; k < v.size(); k += 2) {
+      if (!(v[k] > 0) || !(v[k + 1] > 0))
+        throw Error(Errc::invalid_input, where + ": section " + std::to_string(k / 2 + 1) +
+                                             " needs a positive radius and length");
+      sections.emplace_back(v[k], v[k + 1]);
+    }
+    return sections;
+  }
+  const sweep::Body b = io::read_body(spec);
+  if (b.kind != sweep::Body::Kind::cylinder)
+    throw Error(Errc::invalid_input, where +
+                                         ": the holder is a cylinder:r,h (radius, length; it "
+                                         "starts at the cutter's length) or holder:r1,h1,r2,h2,... "
+                                         "(sections stacked upwards)");
+  return {{b.r, b.h}};
 }
 
 bool is_cad(const std::string& spec) {
@@ -135,14 +165,8 @@ VerifyReport verify(const VerifyOptions& o) {
   for (const std::string& f : o.fixtures) fixtures.push_back(io::read_stock(f, "--fixture", cad));
   const bool any_cad = is_cad(o.part) || is_cad(o.stock) ||
                        std::any_of(o.fixtures.begin(), o.fixtures.end(), is_cad);
-  std::optional<sweep::Body> holder;
-  if (!o.holder.empty()) {
-    holder = io::read_body(o.holder);
-    if (holder->kind != sweep::Body::Kind::cylinder)
-      throw Error(Errc::invalid_input, "--holder '" + o.holder +
-                                           "': the holder is a cylinder:r,h (radius, length; "
-                                           "it starts at the cutter's length)");
-  }
+  std::optional<detail::HolderSections> holder;
+  if (!o.holder.empty()) holder = read_holder(o.holder);
 
   VerifyReport r;
   r.program = o.program;

@@ -48,10 +48,10 @@ void gather(const cam::Program& program, std::size_t i, const cam::Contact& c, c
 }  // namespace
 
 nlohmann::json holder_collisions(const cam::Program& program, const sweep::Body& cutter,
-                                 const sweep::Body& holder, const sweep::Body& part,
+                                 const HolderSections& holder, const sweep::Body& part,
                                  const std::optional<cam::Stock>& stock, const cam::CutIndex* cut,
                                  double tol, std::size_t& cells) {
-  const std::vector<cam::detail::Core> body = cam::holder_cores(holder.r, holder.h, cutter.L);
+  const std::vector<cam::detail::Core> body = cam::holder_cores(holder, cutter.L);
   cam::Stock part_target;
   part_target.body = std::make_shared<sweep::Body>(part);
   const std::size_t n = program.moves.size();
@@ -67,7 +67,13 @@ nlohmann::json holder_collisions(const cam::Program& program, const sweep::Body&
     gather(program, i, with_part[i], "part", list, first, cells);
   }
   nlohmann::json out;
-  out["holder"] = {{"radius", holder.r}, {"length", holder.h}, {"from", cutter.L}};
+  nlohmann::json sections = nlohmann::json::array();
+  for (const auto& [r, h] : holder) sections.push_back({{"radius", r}, {"length", h}});
+  out["holder"] = {{"sections", sections}, {"from", cutter.L}};
+  if (holder.size() == 1) {
+    out["holder"]["radius"] = holder[0].first;
+    out["holder"]["length"] = holder[0].second;
+  }
   out["against"] = stock ? nlohmann::json{"stock as cut so far", "part"} : nlohmann::json{"part"};
   out["first"] = first;
   out["contacts"] = list;
@@ -101,12 +107,12 @@ nlohmann::json rapids_through_stock(const cam::Program& program, const sweep::Bo
 }
 
 nlohmann::json fixture_collisions(const cam::Program& program, const sweep::Body& cutter,
-                                  const std::optional<sweep::Body>& holder,
+                                  const std::optional<HolderSections>& holder,
                                   const std::vector<cam::Stock>& fixtures, double tol,
                                   std::size_t& cells) {
   std::vector<std::pair<std::vector<cam::detail::Core>, const char*>> bodies{
       {cam::detail::cores_of(cutter), "cutter"}};
-  if (holder) bodies.emplace_back(cam::holder_cores(holder->r, holder->h, cutter.L), "holder");
+  if (holder) bodies.emplace_back(cam::holder_cores(*holder, cutter.L), "holder");
   const std::size_t n = program.moves.size(), per = fixtures.size() * bodies.size();
   std::vector<cam::Contact> found(n * per);
   tbb::parallel_for(std::size_t(0), n * per, [&](std::size_t k) {

@@ -14,11 +14,14 @@ inline const char* move_name(cam::Move::Kind k) {
   return k == cam::Move::Kind::traverse ? "G0" : k == cam::Move::Kind::feed ? "G1" : "arc";
 }
 
-/// The holder (a cylinder:r,h above the cutter's length) against the stock as cut so far
+/// A holder: cylinders (radius, length) stacked upwards from the cutter's length.
+using HolderSections = std::vector<std::pair<double, double>>;
+
+/// The holder (sections above the cutter's length) against the stock as cut so far
 /// (when there is a stock; `cut` is what the program cuts) and the part, every move: each move's
 /// first contact, certified, in program order, and the first of all. Counts the cells in `cells`.
 nlohmann::json holder_collisions(const cam::Program& program, const sweep::Body& cutter,
-                                 const sweep::Body& holder, const sweep::Body& part,
+                                 const HolderSections& holder, const sweep::Body& part,
                                  const std::optional<cam::Stock>& stock, const cam::CutIndex* cut,
                                  double tol, std::size_t& cells);
 
@@ -32,7 +35,7 @@ nlohmann::json rapids_through_stock(const cam::Program& program, const sweep::Bo
 /// move: each move's first contact, as holder_collisions lists them, `with` naming the
 /// fixture ("fixture 1", ...) and `body` the cutter or the holder.
 nlohmann::json fixture_collisions(const cam::Program& program, const sweep::Body& cutter,
-                                  const std::optional<sweep::Body>& holder,
+                                  const std::optional<HolderSections>& holder,
                                   const std::vector<cam::Stock>& fixtures, double tol,
                                   std::size_t& cells);
 

@@ -128,6 +128,32 @@ json verify_fixture(const fs::path& ngc, const std::string& fixture) {
                    "--holder", "cylinder:10,30", "--fixture", fixture, "--tol", "0.01"});
 }
 
+/// A stepped holder (holder:5,10,20,30: a nut of radius 5 for 10 mm, then a body of radius
+/// 20) beside the stock: a plunge at x = 32 keeps the cutter and the nut clear of the stock's
+/// face x = 20, but the body's bottom, 20 mm above the tip, reaches the stock's top when the
+/// tip is 20 mm down: t = 40/50 of the plunge from z = 20 to -30. The nut alone, however
+/// long, is proven clear.
+TEST(VerifyCollide, AStepOfTheHolderMeetsTheStockWhereWorkedOutByHand) {
+  const fs::path ngc = program("stepped.ngc", "G0 X32 Y0\nG1 Z-30 F500\n");
+  const fs::path part = box_part("deep_part.obj", -20, -20, -30, 20, 20, -25);
+  auto run = [&](const std::string& holder) {
+    return run_json({"verify", ngc.string(), "--tool", "cutter:flat,6,10", "--part", part.string(),
+                     "--stock", "box:-20,-20,-30,20,20,0", "--holder", holder, "--tol",
+                     "0.01"})["collisions"]["holder"];
+  };
+  const json h = run("holder:5,10,20,30");
+  ASSERT_FALSE(h["first"].is_null()) << h.dump(1);
+  const json& f = h["first"];
+  EXPECT_EQ(f["block"], 2);
+  EXPECT_EQ(f["line"], 4);
+  EXPECT_EQ(f["with"], "stock");
+  EXPECT_LE(f["t"][0].get<double>(), 0.8 + 1e-12);
+  EXPECT_GE(f["t"][1].get<double>(), 0.8 - 1e-12);
+  EXPECT_GE(f["point"][2].get<double>(), -10 - 1e-9);  // on the body, not the nut
+  EXPECT_EQ(h["holder"]["sections"].size(), 2u);
+  EXPECT_TRUE(run("holder:5,40")["clear"].get<bool>());
+}
+
 /// A clamp at x from 22 to 30: a cut along y = 0 meets it with the cutter's side when the
 /// axis reaches x = 19, t = 49/60; the same clamp moved to y >= 3.02 is cleared by 0.02 mm.
 TEST(VerifyCollide, AFixtureTouchedAndAFixtureCleared) {

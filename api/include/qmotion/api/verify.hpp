@@ -26,8 +26,9 @@ struct VerifyOptions {
   /// The part coloured by stock left and gouge: .ply (vertex colours), .svg or .png (a view
   /// from above); needs the stock. Empty: none.
   std::string map;
-  /// The tool holder, cylinder:r,h: radius r from the cutter's length up h (mm); empty:
-  /// none checked.
+  /// The tool holder (mm): cylinder:r,h, radius r from the cutter's length up h; or
+  /// holder:r1,h1,r2,h2,..., cylinders stacked upwards from the cutter's length (a collet
+  /// nut, then the chuck's body); empty: none checked.
   std::string holder;
   /// Fixtures (clamps, vices): as the stock, box:x0,y0,z0,x1,y1,z1 or a closed mesh; never
   /// cut, checked against the cutter and the holder.
@@ -104,7 +105,8 @@ struct VerifyReport {
 /// there yet), a tool that is not a cutter, a part that is neither a closed mesh nor a STEP
 /// or IGES solid (io::mesh_cad), and a bad tolerance; a stock that is neither a box, a
 /// closed mesh nor such a solid, a map without a stock or
-/// of another format, a holder that is not a cylinder, and a fixture as a bad stock is.
+/// of another format, a holder that is neither a cylinder nor a stack of them, and a fixture
+/// as a bad stock is.
 VerifyReport verify(const VerifyOptions& options);
 
 }  // namespace qmotion

@@ -305,6 +305,19 @@ inline std::vector<detail::Core> holder_cores(double r, double h, double cutter_
   return {detail::Core{0, r, 0, cutter_length, cutter_length + h}};
 }
 
+/// A stepped holder (a collet nut, then the chuck's body, ...): sections (r, h) stacked
+/// upwards from the cutter's length, each a cylinder of radius r and length h.
+inline std::vector<detail::Core> holder_cores(
+    const std::vector<std::pair<double, double>>& sections, double cutter_length) {
+  std::vector<detail::Core> cores;
+  double z = cutter_length;
+  for (const auto& [r, h] : sections) {
+    cores.push_back(detail::Core{0, r, 0, z, z + h});
+    z += h;
+  }
+  return cores;
+}
+
 /// The first contact of `body` (in the tool's frame) with `target` over move `index` of the
 /// program; `cut` (none for the part) removes what the program has cut up to each instant.
 /// `is_cutter`: the body is the cutter cut's index sweeps (a rapid move's), whose instance
