@@ -78,12 +78,6 @@ detail::HolderSections read_holder(const std::string& spec) {
   return {{b.r, b.h}};
 }
 
-bool is_cad(const std::string& spec) {
-  const std::string e = io::lower_extension(spec);
-  return spec.find(':') == std::string::npos &&
-         (e == ".step" || e == ".stp" || e == ".igs" || e == ".iges");
-}
-
 }  // namespace
 
 nlohmann::json VerifyReport::report() const {
@@ -163,8 +157,8 @@ VerifyReport verify(const VerifyOptions& o) {
                       : std::optional<cam::Stock>(io::read_stock(o.stock, "--stock", cad));
   std::vector<cam::Stock> fixtures;
   for (const std::string& f : o.fixtures) fixtures.push_back(io::read_stock(f, "--fixture", cad));
-  const bool any_cad = is_cad(o.part) || is_cad(o.stock) ||
-                       std::any_of(o.fixtures.begin(), o.fixtures.end(), is_cad);
+  const bool any_cad = io::is_cad_file(o.part) || io::is_cad_file(o.stock) ||
+                       std::any_of(o.fixtures.begin(), o.fixtures.end(), io::is_cad_file);
   std::optional<detail::HolderSections> holder;
   if (!o.holder.empty()) holder = read_holder(o.holder);
 

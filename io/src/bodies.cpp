@@ -261,11 +261,13 @@ Body cad_file_body(const std::string& path, double deflection) {
   return mesh_body(std::move(w.mesh), path);
 }
 
-bool cad_extension(const std::string& e) {
-  return e == ".step" || e == ".stp" || e == ".igs" || e == ".iges";
-}
-
 }  // namespace
+
+bool is_cad_file(const std::string& spec) {
+  const std::string e = lower_extension(spec);
+  return spec.find(':') == std::string::npos &&
+         (e == ".step" || e == ".stp" || e == ".igs" || e == ".iges");
+}
 
 Body mesh_body(sweep::TriangleMesh mesh, const std::string& label) {
   const int n = static_cast<int>(mesh.vertices.size());
@@ -328,7 +330,7 @@ Body read_body(const std::string& spec, double cad_deflection) {
   const std::string e = lower_extension(spec);
   if (colon == std::string::npos && (e == ".stl" || e == ".obj" || e == ".ply"))
     return mesh_file_body(spec);
-  if (colon == std::string::npos && cad_extension(e)) return cad_file_body(spec, cad_deflection);
+  if (is_cad_file(spec)) return cad_file_body(spec, cad_deflection);
   // The shorthands: a name, then the sizes in the order the form gives them.
   struct Form {
     const char *name, *usage;
@@ -387,7 +389,7 @@ cam::Stock read_stock(const std::string& spec, const std::string& option, double
     return stock;
   }
   const std::string e = lower_extension(spec);
-  if (e != ".stl" && e != ".obj" && e != ".ply" && !cad_extension(e))
+  if (e != ".stl" && e != ".obj" && e != ".ply" && !is_cad_file(spec))
     throw Error(Errc::invalid_input, where +
                                          ": expected box:x0,y0,z0,x1,y1,z1, a closed .stl, .obj "
                                          "or .ply mesh, or a STEP or IGES solid");

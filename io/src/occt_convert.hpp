@@ -65,6 +65,9 @@ sweep::NurbsCurve<double> from_occt(Handle(Geom_BSplineCurve) g);
 TopoDS_Shape read_shape(const std::string& path, const std::string& ext, const UnitNames& u,
                         bool prechecks, std::string& file_units);
 
+/// Every edge of the shape but degenerate ones bounds exactly two faces (a closed shell).
+bool closed_shape(const TopoDS_Shape& shape);
+
 /// The text in lower case (file extensions).
 std::string lower(std::string s);
 

@@ -8,9 +8,7 @@
 #include <IMeshTools_Parameters.hxx>
 #include <Poly_Triangulation.hxx>
 #include <Standard_Failure.hxx>
-#include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
-#include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Face.hxx>
 #include <filesystem>
@@ -26,18 +24,6 @@ namespace qmotion::io {
 using namespace detail;  // NOLINT: this module's own conversions
 
 namespace {
-
-/// Every edge but degenerate ones bounds exactly two faces.
-bool closed_shape(const TopoDS_Shape& shape) {
-  TopTools_IndexedDataMapOfShapeListOfShape edge_faces;
-  TopExp::MapShapesAndAncestors(shape, TopAbs_EDGE, TopAbs_FACE, edge_faces);
-  bool closed = edge_faces.Extent() > 0;
-  for (int i = 1; i <= edge_faces.Extent(); ++i)
-    if (!BRep_Tool::Degenerated(TopoDS::Edge(edge_faces.FindKey(i))) &&
-        edge_faces.FindFromIndex(i).Extent() != 2)
-      closed = false;
-  return closed;
-}
 
 /// The child's work: the file's solids meshed within `deflection`, every face's triangles
 /// turned counter-clockwise seen from outside (a reversed face's reversed).

@@ -240,6 +240,17 @@ void refuse_failed_load(XSControl_Reader& reader, const std::string& path, const
 
 }  // namespace
 
+bool detail::closed_shape(const TopoDS_Shape& shape) {
+  TopTools_IndexedDataMapOfShapeListOfShape edge_faces;
+  TopExp::MapShapesAndAncestors(shape, TopAbs_EDGE, TopAbs_FACE, edge_faces);
+  bool closed = edge_faces.Extent() > 0;
+  for (int i = 1; i <= edge_faces.Extent(); ++i)
+    if (!BRep_Tool::Degenerated(TopoDS::Edge(edge_faces.FindKey(i))) &&
+        edge_faces.FindFromIndex(i).Extent() != 2)
+      closed = false;
+  return closed;
+}
+
 TopoDS_Shape detail::read_shape(const std::string& path, const std::string& ext, const UnitNames& u,
                                 bool prechecks, std::string& file_units) {
   quiet_occt();
@@ -296,15 +307,7 @@ CadGeometry read_cad_here(const std::string& path, bool want_surface, const std:
     for (TopExp_Explorer e(shape, TopAbs_EDGE); e.More(); e.Next()) ++g.edges;
     for (TopExp_Explorer e(shape, TopAbs_SHELL); e.More(); e.Next()) ++g.shells;
     for (TopExp_Explorer e(shape, TopAbs_SOLID); e.More(); e.Next()) ++g.solids;
-    {  // closed: every edge (but degenerate ones) bounds exactly two faces
-      TopTools_IndexedDataMapOfShapeListOfShape edge_faces;
-      TopExp::MapShapesAndAncestors(shape, TopAbs_EDGE, TopAbs_FACE, edge_faces);
-      g.closed = edge_faces.Extent() > 0;
-      for (int i = 1; i <= edge_faces.Extent(); ++i)
-        if (!BRep_Tool::Degenerated(TopoDS::Edge(edge_faces.FindKey(i))) &&
-            edge_faces.FindFromIndex(i).Extent() != 2)
-          g.closed = false;
-    }
+    g.closed = closed_shape(shape);
     if (g.solids > 0) {
       GProp_GProps props;
       BRepGProp::VolumeProperties(shape, props, 1e-9, Standard_True);

@@ -141,7 +141,8 @@ class ContactSearch {
     // Back up the column the move before came down: every instance is one of that move's.
     if (retract_ && p1.z() - m_.from.z() <= covered_) return Contact::Kind::clear;
     const double grow = straight ? 0.0 : up(speed_ * up(0.5 * (t1 - t0)));
-    // Where the tool's tip is over [t0, t1].
+    // Where the tool's tip is over [t0, t1] (a segment's points: the box of its ends; an
+    // arc's: within its reach of the middle).
     const Eigen::Vector3d tip_lo = straight ? p0.cwiseMin(p1) : Eigen::Vector3d(pm.array() - grow);
     const Eigen::Vector3d tip_hi = straight ? p0.cwiseMax(p1) : Eigen::Vector3d(pm.array() + grow);
     const Eigen::Vector2d seg[2] = {p0.head<2>(), p1.head<2>()};
@@ -167,13 +168,8 @@ class ContactSearch {
       // up to its cores' top.
       if (retract_ && b.max().z() + (p1.z() - m_.from.z()) <= top_) continue;
       if (round_clear(tip_lo, tip_hi, segment, b.min().z(), b.max().z())) continue;
-      // Every point of the cell over [t0, t1] lies in [lo, hi] (a segment's points: the box
-      // of its ends; an arc's: within its reach of the middle).
-      Eigen::Vector3d lo = b.min() + p0.cwiseMin(p1), hi = b.max() + p0.cwiseMax(p1);
-      if (!straight) {
-        lo = (b.min() + pm).array() - grow;
-        hi = (b.max() + pm).array() + grow;
-      }
+      // Every point of the cell over [t0, t1] lies in [lo, hi].
+      const Eigen::Vector3d lo = b.min() + tip_lo, hi = b.max() + tip_hi;
       const Eigen::Vector3d c = 0.5 * (lo + hi);
       const double r = up(0.5 * (hi - lo).norm()) + margin(c);
       const double depth = target_.body ? up(target_.depth(c) + r) : target_.depth_max(lo, hi);
@@ -299,12 +295,6 @@ class ContactSearch {
 
 }  // namespace detail
 
-/// The holder `cylinder:r,h` as a body of the tool: radius r from the cutter's length L up
-/// to L + h.
-inline std::vector<detail::Core> holder_cores(double r, double h, double cutter_length) {
-  return {detail::Core{0, r, 0, cutter_length, cutter_length + h}};
-}
-
 /// A stepped holder (a collet nut, then the chuck's body, ...): sections (r, h) stacked
 /// upwards from the cutter's length, each a cylinder of radius r and length h.
 inline std::vector<detail::Core> holder_cores(
@@ -316,6 +306,12 @@ inline std::vector<detail::Core> holder_cores(
     z += h;
   }
   return cores;
+}
+
+/// The holder `cylinder:r,h` as a body of the tool: radius r from the cutter's length L up
+/// to L + h.
+inline std::vector<detail::Core> holder_cores(double r, double h, double cutter_length) {
+  return holder_cores({{r, h}}, cutter_length);
 }
 
 /// The first contact of `body` (in the tool's frame) with `target` over move `index` of the

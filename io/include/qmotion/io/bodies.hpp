@@ -21,6 +21,10 @@ inline constexpr double kCadDeflection = 0.01;
 /// empty, open, non-manifold or inconsistently oriented, and the solids mesh_cad refuses.
 sweep::Body read_body(const std::string& spec, double cad_deflection = kCadDeflection);
 
+/// Whether `spec` names a STEP or IGES file (.step, .stp, .igs, .iges), which read_body and
+/// read_stock mesh within their cad_deflection.
+bool is_cad_file(const std::string& spec);
+
 /// A body from a triangle mesh already in memory (the Python module's arrays), named
 /// `label` in messages, indexed for distance queries. Errc::invalid_input for a vertex that
 /// is not finite, a triangle naming a vertex that does not exist, and the meshes
