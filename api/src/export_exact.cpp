@@ -103,21 +103,24 @@ Computed<sweep::NurbsCurve<double>> exact_trajectory(const kernel::Motion<double
   check_max_degree(opt, f);
   sweep::refuse_poles(lm);
   resolve_units(lm.units, opt, r);
-  const auto h0 = sweep::point_trajectory(lm, point);
-  auto h = h0;
-  if (opt.max_degree > 0 && h.degree() > opt.max_degree) {
-    tol = opt.tol > 0 ? opt.tol : 1e-6 * std::max(diagonal(curve_samples(h0, 200)), 1e-300);
-    const auto approx = sweep::approximate_homogeneous({h0}, opt.max_degree, tol);
-    h = approx.curves.front();
-    r.approx_deviation = approx.max_deviation * r.unit_factor;
-    r.approx_tolerance = tol * r.unit_factor;
-  } else {
-    check_degree(h.degree(), "the trajectory", f, opt);
-    const auto extra = sweep::knots_for_positive_weights(h);
-    r.inserted_knots = static_cast<int>(extra.size());
-    h = sweep::insert_knots(h, extra);
-  }
-  sweep::NurbsCurve<double> c = sweep::to_nurbs(h);
+  // The homogeneous curve lives only in here: it is not held beside the NURBS (a
+  // 10^4-pose motion's is 2 MB).
+  sweep::NurbsCurve<double> c = [&] {
+    auto h = sweep::point_trajectory(lm, point);
+    if (opt.max_degree > 0 && h.degree() > opt.max_degree) {
+      tol = opt.tol > 0 ? opt.tol : 1e-6 * std::max(diagonal(curve_samples(h, 200)), 1e-300);
+      auto approx = sweep::approximate_homogeneous({h}, opt.max_degree, tol);
+      h = std::move(approx.curves.front());
+      r.approx_deviation = approx.max_deviation * r.unit_factor;
+      r.approx_tolerance = tol * r.unit_factor;
+    } else {
+      check_degree(h.degree(), "the trajectory", f, opt);
+      const auto extra = sweep::knots_for_positive_weights(h);
+      r.inserted_knots = static_cast<int>(extra.size());
+      if (!extra.empty()) h = sweep::insert_knots(h, extra);
+    }
+    return sweep::to_nurbs(h);
+  }();
   scale_points(c, r.unit_factor);
   r.degree_u = c.degree;
   r.continuity_u = sweep::min_continuity(c.knots, c.degree);

@@ -434,6 +434,37 @@ bool members(std::string_view s, std::vector<Member>& out) {
   }
 }
 
+bool elements(std::string_view s, const std::function<bool(std::string_view)>& each) {
+  std::size_t i = skip_spaces(s, 0);
+  if (i == s.size() || s[i] != '[') return false;
+  i = skip_spaces(s, i + 1);
+  if (i < s.size() && s[i] == ']') return skip_spaces(s, i + 1) == s.size();
+  while (true) {
+    const std::size_t end = skip_value(s, i);
+    if (end == std::string_view::npos || end == i || !each(s.substr(i, end - i))) return false;
+    i = skip_spaces(s, end);
+    if (i == s.size()) return false;
+    if (s[i] == ']') return skip_spaces(s, i + 1) == s.size();
+    if (s[i] != ',') return false;
+    i = skip_spaces(s, i + 1);
+  }
+}
+
+bool check_slice(std::string_view slice, std::size_t depth) {
+  const auto whole = [&] {
+    return read_member(slice, [&](sj::value v) { return check(v, depth); });
+  };
+  if (slice.size() <= kSharedParserChars || depth >= kMaxJsonDepth) return whole();
+  if (slice.front() == '[')
+    return elements(slice, [&](std::string_view e) { return check_slice(e, depth + 1); });
+  if (slice.front() != '{') return whole();
+  std::vector<Member> parts;
+  if (!members(slice, parts)) return whole();  // an escaped key: simdjson reads it whole
+  for (const auto& m : parts)
+    if (!check_slice(m.value, depth + 1)) return false;
+  return true;
+}
+
 bool read_member(std::string_view slice, const std::function<bool(sj::value)>& read) {
   if (slice.empty()) return false;
   if (slice.front() != '[' && slice.front() != '{') {

@@ -96,6 +96,17 @@ struct Member {
 /// with a full parser, which words any refusal.
 bool members(std::string_view text, std::vector<Member>& out);
 
+/// Calls each(slice) with the text of each element of the JSON array that is `text`, the
+/// extents found as members() finds them (nothing indexed, nothing validated). False when
+/// the text is not an array of that form, or as soon as `each` returns false.
+bool elements(std::string_view text, const std::function<bool(std::string_view)>& each);
+
+/// Validates the value whose text is `slice` (a slice of a Padded view, `depth` levels deep)
+/// as check() does; an array or object longer than kSharedParserChars part by part
+/// (elements(), members()), so no parser indexes more than that: simdjson reserves about 5
+/// bytes a character of what it reads.
+bool check_slice(std::string_view slice, std::size_t depth);
+
 /// Reads one value's text, a slice of a Padded view (members() gives them), and hands the
 /// value to `read`: arrays and objects in place, with a parser whose index covers the slice
 /// alone (a parser of its own above kSharedParserChars); a scalar through a small bracketed
@@ -108,8 +119,10 @@ bool read_member(std::string_view slice, const std::function<bool(sj::value)>& r
 /// returns false.
 bool read_value(std::string_view text, const std::function<bool(sj::value)>& read);
 
-/// The pose document at v (parse_poses_fast's reader, for a pose document inside another
-/// file); std::nullopt as parse_poses_fast; throws the set's checks.
-std::optional<PoseSet> poses(sj::value v, const std::string& source);
+/// The pose document whose text is `text` (a slice of a Padded view): parse_poses_fast's
+/// reader, also for a pose document inside another file. The poses array is cut into poses
+/// (elements()), each read alone, so no index covers more than one pose. std::nullopt as
+/// parse_poses_fast; throws the set's checks.
+std::optional<PoseSet> poses_text(std::string_view text, const std::string& source);
 
 }  // namespace qmotion::io::simd

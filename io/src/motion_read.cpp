@@ -143,8 +143,7 @@ bool method_block(std::string_view raw, MotionFile& f, bool with_method,
   constexpr std::size_t depth = 2;  // the method's members lie two levels deep
   if (!with_method) {
     for (const auto& m : members) {
-      if (!simd::read_member(m.value, [](sj::value v) { return simd::check(v, depth); }))
-        return false;
+      if (!simd::check_slice(m.value, depth)) return false;
       read_to(m.value.data() + m.value.size());
     }
     return true;
@@ -156,14 +155,12 @@ bool method_block(std::string_view raw, MotionFile& f, bool with_method,
     bool ok = true;
     if (key == "input_poses") {
       if (f.input_poses) return false;  // given twice: the tree reader decides
-      ok = simd::read_member(value, [&](sj::value v) {
-        try {
-          f.input_poses = simd::poses(v, f.source + ": method.input_poses");
-        } catch (const Error&) {
-          return false;  // refused where the tree reader refuses it, in its words
-        }
-        return f.input_poses.has_value();
-      });
+      try {
+        f.input_poses = simd::poses_text(value, f.source + ": method.input_poses");
+      } catch (const Error&) {
+        return false;  // refused where the tree reader refuses it, in its words
+      }
+      ok = f.input_poses.has_value();
     } else if (key == "rotation_control_points" || key == "translation_control_points" ||
                key == "translation2_control_points") {
       // Rows of equal width, read lean; anything else (or a repeat) the tree reader words.
@@ -250,7 +247,7 @@ std::optional<MotionFile> parse_motion_view(std::string_view text, const std::st
     } else if (key == "method") {
       ok = method_block(raw, f, with_method, read_to);
     } else {
-      ok = simd::read_member(raw, [](sj::value v) { return simd::check(v, 1); });
+      ok = simd::check_slice(raw, 1);
     }
     if (!ok) return std::nullopt;
     read_to(raw.data() + raw.size());

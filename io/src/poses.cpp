@@ -259,59 +259,70 @@ bool fast_rotation(sj::value v, RotationInput& out) {
 
 }  // namespace
 
-std::optional<PoseSet> simd::poses(sj::value doc, const std::string& source) {
-  sj::object root;
-  if (doc.get_object().get(root)) return std::nullopt;
+namespace {
+
+/// One pose object into `in`; false for anything the tree reader should word.
+bool fast_pose(sj::value e, PoseInput& in) {
+  sj::object p;
+  if (e.get_object().get(p)) return false;
+  bool t = false, position = false, rotation = false;
+  for (auto pf : p) {
+    std::string_view pk;
+    if (pf.unescaped_key().get(pk)) return false;
+    sj::value pv = pf.value();
+    if (pk == "t") {
+      bool null = false;
+      if (t || pv.is_null().get(null)) return false;
+      if (!null && !simd::number(pv, in.t.emplace(), /*lean=*/true)) return false;
+      t = true;
+    } else if (pk == "position") {
+      std::vector<Number> xyz;
+      if (position || !fast_numbers(pv, 3, xyz)) return false;
+      std::move(xyz.begin(), xyz.end(), in.position.begin());
+      position = true;
+    } else if (pk == "rotation") {
+      if (rotation || !fast_rotation(pv, in.rotation)) return false;
+      rotation = true;
+    } else if (!simd::check(pv, 3)) {
+      return false;
+    }
+  }
+  return position && rotation;
+}
+
+}  // namespace
+
+std::optional<PoseSet> simd::poses_text(std::string_view text, const std::string& source) {
+  std::vector<Member> root;
+  if (!members(text, root)) return std::nullopt;
   PoseSet set;
   set.source = source;
   bool units = false, poses = false;
-  for (auto field : root) {
-    std::string_view key;
-    if (field.unescaped_key().get(key)) return std::nullopt;
-    sj::value v = field.value();
+  for (const auto& [key, value] : root) {
+    bool ok = true;
     if (key == "units") {
-      std::string_view u;
-      if (units || v.get_string().get(u) || !is_known_unit(std::string(u))) return std::nullopt;
-      set.units = std::string(u);
+      ok = !units && read_member(value, [&](sj::value v) {
+        std::string_view u;
+        if (v.get_string().get(u) || !is_known_unit(std::string(u))) return false;
+        set.units = std::string(u);
+        return true;
+      });
       units = true;
     } else if (key == "poses") {
-      sj::array a;
+      // Pose by pose: each pose's text is indexed alone (the shared parser), never the array;
+      // counted first, so the set is allocated once.
       std::size_t count = 0;
-      if (poses || v.get_array().get(a) || a.count_elements().get(count) || count > kMaxPoses)
-        return std::nullopt;
-      set.poses.reserve(count);
-      for (auto e : a) {
-        sj::object p;
-        if (e.get_object().get(p)) return std::nullopt;
-        PoseInput& in = set.poses.emplace_back();
-        bool t = false, position = false, rotation = false;
-        for (auto pf : p) {
-          std::string_view pk;
-          if (pf.unescaped_key().get(pk)) return std::nullopt;
-          sj::value pv = pf.value();
-          if (pk == "t") {
-            bool null = false;
-            if (t || pv.is_null().get(null)) return std::nullopt;
-            if (!null && !simd::number(pv, in.t.emplace(), /*lean=*/true)) return std::nullopt;
-            t = true;
-          } else if (pk == "position") {
-            std::vector<Number> xyz;
-            if (position || !fast_numbers(pv, 3, xyz)) return std::nullopt;
-            std::move(xyz.begin(), xyz.end(), in.position.begin());
-            position = true;
-          } else if (pk == "rotation") {
-            if (rotation || !fast_rotation(pv, in.rotation)) return std::nullopt;
-            rotation = true;
-          } else if (!simd::check(pv)) {
-            return std::nullopt;
-          }
-        }
-        if (!position || !rotation) return std::nullopt;
-      }
+      ok = !poses && elements(value, [&](std::string_view) { return ++count <= kMaxPoses; });
+      if (ok) set.poses.reserve(count);
+      ok = ok && elements(value, [&](std::string_view e) {
+             return read_member(
+                 e, [&](sj::value v) { return fast_pose(v, set.poses.emplace_back()); });
+           });
       poses = true;
-    } else if (!simd::check(v)) {
-      return std::nullopt;
+    } else {
+      ok = check_slice(value, 1);
     }
+    if (!ok) return std::nullopt;
   }
   if (!poses) return std::nullopt;
   validate_set(set);
@@ -319,12 +330,8 @@ std::optional<PoseSet> simd::poses(sj::value doc, const std::string& source) {
 }
 
 std::optional<PoseSet> parse_poses_fast(const std::string& text, const std::string& source) {
-  simd::Document d(text);
-  sj::value root;
-  if (!d.ok || d.doc.get_value().get(root)) return std::nullopt;
-  auto set = simd::poses(root, source);
-  if (!set || !d.at_end()) return std::nullopt;
-  return set;
+  const simd::Padded padded(text);
+  return simd::poses_text(padded.view(), source);
 }
 
 PoseSet parse_poses_json(const std::string& text, const std::string& source) {

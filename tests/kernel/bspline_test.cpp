@@ -216,6 +216,47 @@ TYPED_TEST(BSplineTest, ABreakpointOneFactorLacksKeepsTheOthersContinuity) {
   EXPECT_GT(kernel::to_double(kernel::abs_value(jump)), 1e-6);
 }
 
+/// The joiner, fed piece by piece, makes from_bezier_pieces' poles bit for bit while holding
+/// at most degree + 1 pieces, on knot vectors of many spans with every multiplicity and spans
+/// a thousand times narrower than their neighbours (where the widest piece is chosen).
+TYPED_TEST(BSplineTest, JoinerMatchesWholeReassemblyHoldingFewPieces) {
+  using S = TypeParam;
+  std::mt19937 g(7);
+  for (int p = 0; p <= 6; ++p) {
+    std::vector<S> k(static_cast<std::size_t>(p + 1), S(0));
+    S x(0);
+    for (int j = 0; j < 40; ++j) {
+      x += j % 7 == 3 ? S(1) / S(1000) : S(1 + j % 3);
+      const int mult = p == 0 ? 1 : 1 + static_cast<int>(g() % static_cast<unsigned>(p));
+      k.insert(k.end(), static_cast<std::size_t>(mult), x);
+    }
+    x += S(1);
+    k.insert(k.end(), static_cast<std::size_t>(p + 1), x);
+    std::vector<Eigen::Matrix<S, 4, 1>> c;
+    for (std::size_t i = 0; i + static_cast<std::size_t>(p) + 1 < k.size(); ++i)
+      c.push_back(rand_coef<Eigen::Matrix<S, 4, 1>>(g));
+    const auto s = BSpline<Eigen::Matrix<S, 4, 1>>::make(p, k, std::move(c));
+    const auto pieces = kernel::bezier_pieces(s);
+    const auto whole = kernel::from_bezier_pieces(pieces, p, k);
+    kernel::BezierJoiner<Eigen::Matrix<S, 4, 1>> joiner(p, k);
+    for (const auto& piece : pieces) {
+      joiner.add(piece);
+      ASSERT_LE(joiner.held(), static_cast<std::size_t>(p + 1)) << "p=" << p;
+    }
+    EXPECT_THROW(joiner.add(pieces.front()), Error) << "a piece beyond the last span";
+    const auto joined = std::move(joiner).finish();
+    ASSERT_EQ(joined.knots(), whole.knots());
+    ASSERT_EQ(joined.ctrl().size(), s.ctrl().size());
+    for (std::size_t i = 0; i < s.ctrl().size(); ++i) {
+      ASSERT_TRUE(joined.ctrl()[i] == whole.ctrl()[i]) << "p=" << p << " pole " << i;
+      ASSERT_TRUE(coef_near(joined.ctrl()[i], s.ctrl()[i], 1e-9)) << "p=" << p << " pole " << i;
+    }
+    kernel::BezierJoiner<Eigen::Matrix<S, 4, 1>> early(p, k);
+    early.add(pieces.front());
+    EXPECT_THROW((void)std::move(early).finish(), Error) << "finished before the last span";
+  }
+}
+
 TEST(BSplineValidation, ReportsEachProblem) {
   using B = BSpline<double>;
   EXPECT_FALSE(B::validate(2, {0, 0, 0, 1, 1, 1}, 3).size());

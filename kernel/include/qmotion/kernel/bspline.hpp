@@ -271,6 +271,49 @@ std::vector<Bernstein<Coef>> bezier_pieces(const BSpline<Coef>& s,
   return out;
 }
 
+namespace detail {
+
+/// The non-empty knot spans j (T_j < T_(j+1)) of a knot vector, in order.
+template <typename Scalar>
+std::vector<std::size_t> nonempty_spans(const std::vector<Scalar>& knots) {
+  std::vector<std::size_t> span;
+  for (std::size_t j = 0; j + 1 < knots.size(); ++j)
+    if (knots[j] < knots[j + 1]) span.push_back(j);
+  return span;
+}
+
+/// Pole i of the spline of degree d on `knots` (n poles) joined from Bezier pieces:
+/// piece(k) is the piece on the non-empty span span[k]; `first` is the first index of span
+/// not before the pole's window, advanced here (poles are asked for in order). The pole is
+/// the blossom of the widest piece within its support [T_i, T_(i+d+1)]: every such piece
+/// has the same blossom there (the continuity the knots state), and the widest evaluates it
+/// best (a piece on a tiny span extrapolates badly).
+template <typename Coef, typename Piece>
+Coef joined_pole(const std::vector<coef_scalar_t<Coef>>& knots, std::size_t d, std::size_t n,
+                 std::size_t i, const std::vector<std::size_t>& span, std::size_t& first,
+                 const Piece& piece, std::vector<Coef>& work) {
+  const std::size_t lo = std::max(i, d), hi = std::min(i + d, n - 1);
+  while (first < span.size() && span[first] < lo) ++first;
+  std::size_t k = first;
+  if (k == span.size() || span[k] > hi)
+    throw Error(Errc::internal, "pole without a non-empty span");
+  for (std::size_t c = k + 1; c < span.size() && span[c] <= hi; ++c)
+    if (knots[span[k] + 1] - knots[span[k]] < knots[span[c] + 1] - knots[span[c]]) k = c;
+  const std::size_t best = span[k];
+  const Bernstein<Coef>& b = piece(k);
+  if (d == 0) return b[0];
+  // A window made of the piece's own end points only, (x_k^(d-m), x_(k+1)^m), blossoms to
+  // its Bernstein coefficient m: no evaluation (every pole of a Bezier-like knot vector).
+  // The window T_(i+1..i+d) is sorted and no knot lies between x_k = T_best and
+  // x_(k+1) = T_(best+1), so it is made of them when it lies in [x_k, x_(k+1)]; its
+  // x_(k+1) are those from T_(best+1) on.
+  if (!(knots[i + 1] < knots[best]) && !(knots[best + 1] < knots[i + d]))
+    return b[static_cast<int>(i + d - best)];
+  return blossom(b, knots.begin() + static_cast<std::ptrdiff_t>(i + 1), work);
+}
+
+}  // namespace detail
+
 /// Reassembles a spline of the given degree and clamped knot vector from Bezier pieces on
 /// its spans (pieces[k] on [x_k, x_{k+1}] of the knot vector's breakpoints). Each pole is
 /// the blossom of a piece under its support at the pole's knot window (dual functionals);
@@ -280,44 +323,77 @@ BSpline<Coef> from_bezier_pieces(const std::vector<Bernstein<Coef>>& pieces, int
                                  std::vector<coef_scalar_t<Coef>> knots) {
   const std::size_t d = static_cast<std::size_t>(degree);
   const std::size_t n = knots.size() - d - 1;
-  // The non-empty knot spans j (T_j < T_(j+1)) in order: pieces[k] is on span[k].
-  std::vector<std::size_t> span;
-  for (std::size_t j = 0; j + 1 < knots.size(); ++j)
-    if (knots[j] < knots[j + 1]) span.push_back(j);
+  const auto span = detail::nonempty_spans(knots);
   if (span.size() != pieces.size())
     throw Error(Errc::internal, "Bezier pieces do not match the knot vector");
   std::vector<Coef> ctrl, work;
   ctrl.reserve(n);
-  std::size_t first = 0;  // the first non-empty span not before the pole's window
-  for (std::size_t i = 0; i < n; ++i) {
-    // The widest non-empty span within the pole's support [T_i, T_{i+d+1}]: every such
-    // span's piece has the same blossom there (the continuity the knots state), and the
-    // widest evaluates it best (a piece on a tiny span extrapolates badly).
-    const std::size_t lo = std::max(i, d), hi = std::min(i + d, n - 1);
-    while (first < span.size() && span[first] < lo) ++first;
-    std::size_t k = first;
-    if (k == span.size() || span[k] > hi)
-      throw Error(Errc::internal, "pole without a non-empty span");
-    for (std::size_t c = k + 1; c < span.size() && span[c] <= hi; ++c)
-      if (knots[span[k] + 1] - knots[span[k]] < knots[span[c] + 1] - knots[span[c]]) k = c;
-    const std::size_t best = span[k];
-    if (d == 0) {
-      ctrl.push_back(pieces[k][0]);
-      continue;
-    }
-    // A window made of the piece's own end points only, (x_k^(d-m), x_(k+1)^m), blossoms to
-    // its Bernstein coefficient m: no evaluation (every pole of a Bezier-like knot vector).
-    // The window T_(i+1..i+d) is sorted and no knot lies between x_k = T_best and
-    // x_(k+1) = T_(best+1), so it is made of them when it lies in [x_k, x_(k+1)]; its
-    // x_(k+1) are those from T_(best+1) on.
-    if (!(knots[i + 1] < knots[best]) && !(knots[best + 1] < knots[i + d])) {
-      ctrl.push_back(pieces[k][static_cast<int>(i + d - best)]);
-      continue;
-    }
-    ctrl.push_back(blossom(pieces[k], knots.begin() + static_cast<std::ptrdiff_t>(i + 1), work));
-  }
+  std::size_t first = 0;
+  const auto piece = [&pieces](std::size_t k) -> const Bernstein<Coef>& { return pieces[k]; };
+  for (std::size_t i = 0; i < n; ++i)
+    ctrl.push_back(detail::joined_pole(knots, d, n, i, span, first, piece, work));
   return BSpline<Coef>::make(degree, std::move(knots), std::move(ctrl));
 }
+
+/// from_bezier_pieces, fed one piece at a time in span order: each pole is made as soon as
+/// the pieces its window may use are in, and a piece is dropped once no later pole can use
+/// it, so at most degree + 1 pieces are held (a spline of 10^4 spans is not held twice).
+/// The poles are those from_bezier_pieces makes, bit for bit.
+template <typename Coef>
+class BezierJoiner {
+  using S = coef_scalar_t<Coef>;
+
+ public:
+  BezierJoiner(int degree, std::vector<S> knots)
+      : degree_(degree),
+        d_(static_cast<std::size_t>(degree)),
+        n_(knots.size() - d_ - 1),
+        knots_(std::move(knots)),
+        span_(detail::nonempty_spans(knots_)) {
+    ctrl_.reserve(n_);
+  }
+  /// The next piece, on the next non-empty span.
+  void add(Bernstein<Coef> piece) {
+    if (added_ == span_.size()) throw Error(Errc::internal, "more Bezier pieces than spans");
+    held_.push_back(std::move(piece));
+    const std::size_t last = span_[added_++];
+    // Pole i's window reaches span min(i + d, n - 1): every piece it may use is in.
+    while (ctrl_.size() < n_ && std::min(ctrl_.size() + d_, n_ - 1) <= last) pole();
+    // Spans before the next pole's window are no longer needed.
+    const std::size_t lo = std::max(ctrl_.size(), d_);
+    while (!held_.empty() && span_[held_first_] < lo) {
+      held_.erase(held_.begin());
+      ++held_first_;
+    }
+  }
+  /// How many pieces are held now: at most degree + 1 once add returns.
+  std::size_t held() const { return held_.size(); }
+  /// The spline, once every span has its piece.
+  BSpline<Coef> finish() && {
+    if (added_ != span_.size())
+      throw Error(Errc::internal, "Bezier pieces do not match the knot vector");
+    while (ctrl_.size() < n_) pole();
+    return BSpline<Coef>::make(degree_, std::move(knots_), std::move(ctrl_));
+  }
+
+ private:
+  void pole() {
+    const auto piece = [this](std::size_t k) -> const Bernstein<Coef>& {
+      if (k < held_first_ || k - held_first_ >= held_.size())
+        throw Error(Errc::internal, "Bezier joiner: a pole's piece was dropped");
+      return held_[k - held_first_];
+    };
+    first_ = std::max(first_, held_first_);
+    ctrl_.push_back(detail::joined_pole(knots_, d_, n_, ctrl_.size(), span_, first_, piece, work_));
+  }
+  int degree_;
+  std::size_t d_, n_;
+  std::vector<S> knots_;
+  std::vector<std::size_t> span_;
+  std::vector<Bernstein<Coef>> held_;  // pieces on span_[held_first_ ...]
+  std::size_t held_first_ = 0, added_ = 0, first_ = 0;
+  std::vector<Coef> ctrl_, work_;
+};
 
 /// The continuity of s at x: C^(degree - multiplicity) at a knot, C-infinity (INT_MAX)
 /// where x is no knot of s: a polynomial piece is smooth inside its span.

@@ -77,11 +77,13 @@ kernel::BSpline<Eigen::Matrix<Scalar, 3, 1>> add(
 namespace detail {
 
 /// The Bezier pieces of matrix_from_factors' spline, span by span on the factors' common
-/// breakpoints, each handed to visit(piece) as it is made (an lvalue visit may move from; its
-/// storage is otherwise reused for the next piece); returns the spline's degree and knot
-/// vector (from_bezier_pieces assembles it from them).
-template <typename Scalar, typename Visit>
-std::pair<int, std::vector<Scalar>> matrix_pieces(const MotionFactors<Scalar>& f, Visit&& visit) {
+/// breakpoints: start(d, knots) is told the spline's degree and knot vector first, then each
+/// piece is handed to visit(piece) as it is made (an lvalue visit may move from; its storage
+/// is otherwise reused for the next piece); returns the degree and knot vector
+/// (from_bezier_pieces assembles the spline from them and the pieces).
+template <typename Scalar, typename Start, typename Visit>
+std::pair<int, std::vector<Scalar>> matrix_pieces(const MotionFactors<Scalar>& f, Start&& start,
+                                                  Visit&& visit) {
   using V3 = Eigen::Matrix<Scalar, 3, 1>;
   using M3 = Eigen::Matrix<Scalar, 3, 3>;
   using M4 = Eigen::Matrix<Scalar, 4, 4>;
@@ -144,6 +146,17 @@ std::pair<int, std::vector<Scalar>> matrix_pieces(const MotionFactors<Scalar>& f
   const int l1 = f.translation.degree();
   int d = std::max(k2, l1 + (method == kernel::TranslationMethod::minimal ? 0 : k2));
   if (method == kernel::TranslationMethod::trt) d = std::max(d, k2 + f.translation2->degree());
+  // At a breakpoint the matrix is as smooth as the least smooth factor there.
+  std::vector<Scalar> knots(static_cast<std::size_t>(d + 1), x.front());
+  for (std::size_t k = 1; k + 1 < x.size(); ++k) {
+    int cont = std::min(kernel::continuity_at(f.rotation, x[k]),
+                        kernel::continuity_at(f.translation, x[k]));
+    if (method == kernel::TranslationMethod::trt)
+      cont = std::min(cont, kernel::continuity_at(*f.translation2, x[k]));
+    knots.insert(knots.end(), static_cast<std::size_t>(std::clamp(d - cont, 0, d + 1)), x[k]);
+  }
+  knots.insert(knots.end(), static_cast<std::size_t>(d + 1), x.back());
+  start(d, knots);
   // kernel::product's weights for |Q_rot|^2 (degree 2k) times p (l1).
   const std::vector<Scalar> product_weight = kernel::product_weights<Scalar>(k2, l1);
   std::vector<V3> a;  // column 0 below the weight
@@ -180,16 +193,6 @@ std::pair<int, std::vector<Scalar>> matrix_pieces(const MotionFactors<Scalar>& f
     visit(piece);  // may move the piece away (matrix_from_factors keeps it)
     c = std::move(piece).take_coeffs();
   }
-  // At a breakpoint the matrix is as smooth as the least smooth factor there.
-  std::vector<Scalar> knots(static_cast<std::size_t>(d + 1), x.front());
-  for (std::size_t k = 1; k + 1 < x.size(); ++k) {
-    int cont = std::min(kernel::continuity_at(f.rotation, x[k]),
-                        kernel::continuity_at(f.translation, x[k]));
-    if (method == kernel::TranslationMethod::trt)
-      cont = std::min(cont, kernel::continuity_at(*f.translation2, x[k]));
-    knots.insert(knots.end(), static_cast<std::size_t>(std::clamp(d - cont, 0, d + 1)), x[k]);
-  }
-  knots.insert(knots.end(), static_cast<std::size_t>(d + 1), x.back());
   return {d, std::move(knots)};
 }
 
@@ -205,31 +208,38 @@ std::pair<int, std::vector<Scalar>> matrix_pieces(const MotionFactors<Scalar>& f
 template <typename Scalar>
 kernel::BSpline<Eigen::Matrix<Scalar, 4, 4>> matrix_from_factors(const MotionFactors<Scalar>& f) {
   std::vector<kernel::Bernstein<Eigen::Matrix<Scalar, 4, 4>>> pieces;
-  auto [d, knots] =
-      detail::matrix_pieces(f, [&](auto&& piece) { pieces.push_back(std::move(piece)); });
+  auto [d, knots] = detail::matrix_pieces(
+      f, [](int, const std::vector<Scalar>&) {},
+      [&](auto&& piece) { pieces.push_back(std::move(piece)); });
   return kernel::from_bezier_pieces(pieces, d, std::move(knots));
 }
 
 /// The homogeneous trajectories y_j = M X_j of the points X_j (matrix_from_factors' M), all
-/// with M's degree and knots: each span's matrix piece is applied to every X_j as it is made,
-/// so neither M nor its pieces are held (a 4 x 4 piece is four times a trajectory's).
-/// Exact for exact Scalar.
+/// with M's degree and knots: each span's matrix piece is applied to every X_j as it is made
+/// and joined at once (kernel::BezierJoiner), so neither M, its pieces nor the trajectories'
+/// pieces are held (a 4 x 4 piece is four times a trajectory's). Exact for exact Scalar.
 template <typename Scalar>
 std::vector<kernel::BSpline<Vec4<Scalar>>> trajectories_from_factors(
     const MotionFactors<Scalar>& f, const std::vector<Vec4<Scalar>>& X) {
   using M4 = Eigen::Matrix<Scalar, 4, 4>;
-  std::vector<std::vector<kernel::Bernstein<Vec4<Scalar>>>> pieces(X.size());
-  auto [d, knots] = detail::matrix_pieces(f, [&](const kernel::Bernstein<M4>& m) {
-    for (std::size_t j = 0; j < X.size(); ++j) {
-      std::vector<Vec4<Scalar>> c;
-      c.reserve(m.coeffs().size());
-      for (const M4& a : m.coeffs()) c.push_back(a * X[j]);
-      pieces[j].emplace_back(std::move(c), m.a(), m.b());
-    }
-  });
+  std::vector<kernel::BezierJoiner<Vec4<Scalar>>> joiners;
+  detail::matrix_pieces(
+      f,
+      [&](int d, const std::vector<Scalar>& knots) {
+        joiners.reserve(X.size());
+        for (std::size_t j = 0; j < X.size(); ++j) joiners.emplace_back(d, knots);
+      },
+      [&](const kernel::Bernstein<M4>& m) {
+        for (std::size_t j = 0; j < X.size(); ++j) {
+          std::vector<Vec4<Scalar>> c;
+          c.reserve(m.coeffs().size());
+          for (const M4& a : m.coeffs()) c.push_back(a * X[j]);
+          joiners[j].add(kernel::Bernstein<Vec4<Scalar>>(std::move(c), m.a(), m.b()));
+        }
+      });
   std::vector<kernel::BSpline<Vec4<Scalar>>> out;
   out.reserve(X.size());
-  for (const auto& p : pieces) out.push_back(kernel::from_bezier_pieces(p, d, knots));
+  for (auto& j : joiners) out.push_back(std::move(j).finish());
   return out;
 }
 
