@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "api/toolpath_util.hpp"
+#include "sanitized_size.hpp"
 
 namespace qmotion::test {
 namespace {
@@ -46,7 +47,7 @@ TEST(Toolpath, TolerancesHoldOnEveryKindOfMotion) {
       {"kks", qmotion::qspline(io::read_poses(test_data("helix_10.json")), qo).motion}};
   const V3 x(1, -2, 3), a = V3(0.2, 0.1, 1).normalized();
   for (const auto& [name, m] : motions)
-    for (double tol : {1e-1, 1e-2, 1e-3, 1e-4}) {
+    for (double tol : steps({1e-1, 1e-2, 1e-3, 1e-4})) {
       SCOPED_TRACE(name + " " + std::to_string(tol));
       qmotion::ToolpathOptions o;
       o.output = scratch("tp.csv").string();
@@ -279,7 +280,7 @@ TEST(Toolpath, NurbsBlocksParseBackAsClampedCubicsWithinTheTolerance) {
       {"kks", qmotion::qspline(io::read_poses(test_data("helix_10.json")), qo).motion}};
   const V3 x(1, -2, 3);
   for (const auto& [name, m] : motions)
-    for (double tol : {1e-1, 1e-2, 1e-3, 1e-4}) {
+    for (double tol : steps({1e-1, 1e-2, 1e-3, 1e-4})) {
       SCOPED_TRACE(name + " " + std::to_string(tol));
       qmotion::ToolpathOptions o;
       o.output = scratch("nurbs.ngc").string();

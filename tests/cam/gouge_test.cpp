@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "io_test_util.hpp"
+#include "sanitized_size.hpp"
 
 namespace qmotion::test {
 namespace {
@@ -97,7 +98,7 @@ TEST(Gouge, ADipBetweenTheEndsOfOneBlock) {
     // At the block's ends the cutter clears the part: stamping there finds nothing.
     for (const Eigen::Vector3d& end : {m.from, m.to})
       EXPECT_GT(bump_signed_distance(end), 0.49) << spec;
-    for (double tol : {0.01, 0.001}) {
+    for (double tol : steps({0.01, 0.001})) {
       const cam::Gouge g = cam::move_gouge(m, c, part, tol);
       EXPECT_TRUE(g.settled) << spec;
       EXPECT_LE(g.lower, 0.5) << spec;

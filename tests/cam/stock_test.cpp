@@ -10,6 +10,8 @@
 #include <random>
 #include <vector>
 
+#include "sanitized_size.hpp"
+
 namespace qmotion::test {
 namespace {
 
@@ -134,7 +136,7 @@ TEST(Stock, AStraightMovesDistanceIsAtMostItsCornersOverATriangle) {
     p.moves.push_back(straight({-5, -1, 0}, {6, 2, -1}));
     const cam::CutIndex cut(p, cutter);
     const auto cores = cam::detail::cores_of(cutter);
-    for (int i = 0; i < 60; ++i) {
+    for (int i = 0; i < sized(60, 10); ++i) {
       const Eigen::Vector3d a(u(rng), u(rng), u(rng)), b(u(rng), u(rng), u(rng)),
           c(u(rng), u(rng), u(rng));
       const double top =

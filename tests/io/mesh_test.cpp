@@ -19,6 +19,7 @@
 #include <sstream>
 
 #include "io_test_util.hpp"
+#include "sanitized_size.hpp"
 
 namespace qmotion::test {
 namespace {
@@ -121,7 +122,7 @@ ReadMesh read_ply(const fs::path& path) {
 TEST(Mesh, SolidMeshesAreClosedOrientedAndWithinTheDeflection) {
   const double r = 3;
   const auto profile = io::read_profile("circle:3", "mm");
-  for (double D : {1.0, 0.1, 0.01}) {
+  for (double D : steps({1.0, 0.1, 0.01})) {
     SCOPED_TRACE("deflection " + std::to_string(D));
     qmotion::ExportOptions o;
     o.output = scratch_path("mesh", "tube.ply").string();

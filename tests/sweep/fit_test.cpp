@@ -5,6 +5,7 @@
 #include <random>
 
 #include "qspline_util.hpp"
+#include "sanitized_size.hpp"
 #include "test_util.hpp"
 
 namespace qmotion::test {
@@ -40,7 +41,7 @@ TEST(FitFrames, EverySchemeIsWithinTheToleranceAndPolesGrowAsItShrinks) {
     const QuaternionSpline s = six_key_spline(scheme);
     SCOPED_TRACE(kernel::to_string(s.scheme));
     int last_poles = 0;
-    for (double tol : {1e-3, 1e-6, 1e-9}) {
+    for (double tol : steps({1e-3, 1e-6, 1e-9})) {
       sweep::FrameFitOptions o;
       o.tol = tol;
       const auto f = sweep::fit_frames(s, pts, o);
@@ -89,7 +90,7 @@ TEST(FitFrames, TheDeviationBoundIsProvenAndTight) {
   for (auto scheme : {kernel::QSplineScheme::kks, kernel::QSplineScheme::quintic,
                       kernel::QSplineScheme::quartic}) {
     const QuaternionSpline s = six_key_spline(scheme);
-    for (double tol : {1e-3, 1e-6, 1e-9}) {
+    for (double tol : steps({1e-3, 1e-6, 1e-9})) {
       SCOPED_TRACE(std::string(kernel::to_string(s.scheme)) + " tol " + std::to_string(tol));
       sweep::FrameFitOptions o;
       o.tol = tol;
@@ -103,7 +104,10 @@ TEST(FitFrames, TheDeviationBoundIsProvenAndTight) {
       if (grid_deviation(s, f, pts, 64) < dense * (1 - 1e-3)) ++under_read;
     }
   }
-  EXPECT_GT(under_read, 0);
+  // The 64-point grid reads low at the finest tolerance, which the sanitized tree skips.
+  if (!kSanitized) {
+    EXPECT_GT(under_read, 0);
+  }
 }
 
 // The generic entry point takes the motion's second-derivative bound, and the certificate's

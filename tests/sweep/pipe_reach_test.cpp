@@ -5,6 +5,7 @@
 // refusal names the radius of curvature, or the two places on the path.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <qmotion/kernel/error.hpp>
@@ -12,6 +13,7 @@
 #include <qmotion/sweep/pipe_reach.hpp>
 #include <random>
 #include <string>
+#include <vector>
 
 namespace qmotion {
 namespace pipe_reach_tests {  // named: the unity build merges test files
@@ -105,7 +107,9 @@ TEST(PipeReach, RefusesAPathThatComesBack) {
 }
 
 /// The volume of { x : dist(x, c) <= r } by Monte Carlo in the box about the path: n points,
-/// each against a polyline of 4000 segments on the path; and the standard error.
+/// each against a polyline of 4000 segments on the path; and the standard error. Each point
+/// is tested against the segments listed in its cell of a grid of side r, which lists every
+/// segment whose box, grown by r, meets the cell: the others lie farther than r.
 std::pair<double, double> monte_carlo_volume(const Path& c, double r, int n) {
   std::vector<Eigen::Vector3d> poly;
   Eigen::AlignedBox3d box;
@@ -116,13 +120,32 @@ std::pair<double, double> monte_carlo_volume(const Path& c, double r, int n) {
   }
   box.min().array() -= r;
   box.max().array() += r;
+  const Eigen::Array3i cells = (box.sizes().array() / r).ceil().cast<int>().max(1);
+  const auto cell = [&](const Eigen::Vector3d& x) {
+    const Eigen::Array3i k =
+        ((x - box.min()).array() / r).floor().cast<int>().max(0).min(cells - 1);
+    return k;
+  };
+  std::vector<std::vector<int>> grid(static_cast<std::size_t>(cells.prod()));
+  const auto index = [&](const Eigen::Array3i& k) {
+    return static_cast<std::size_t>((k(2) * cells(1) + k(1)) * cells(0) + k(0));
+  };
+  for (std::size_t i = 0; i + 1 < poly.size(); ++i) {
+    Eigen::AlignedBox3d sb(poly[i]);
+    sb.extend(poly[i + 1]);
+    const Eigen::Array3i lo = cell(sb.min().array() - r), hi = cell(sb.max().array() + r);
+    for (int z = lo(2); z <= hi(2); ++z)
+      for (int y = lo(1); y <= hi(1); ++y)
+        for (int x = lo(0); x <= hi(0); ++x)
+          grid[index(Eigen::Array3i(x, y, z))].push_back(static_cast<int>(i));
+  }
   std::mt19937 g(11);
   std::uniform_real_distribution<double> u(0, 1);
   int inside = 0;
   for (int k = 0; k < n; ++k) {
     const Eigen::Vector3d x =
         box.min() + box.sizes().cwiseProduct(Eigen::Vector3d(u(g), u(g), u(g)));
-    for (std::size_t i = 0; i + 1 < poly.size(); ++i) {
+    for (const int i : grid[index(cell(x))]) {
       const Eigen::Vector3d d = poly[i + 1] - poly[i];
       const double s = std::clamp((x - poly[i]).dot(d) / d.squaredNorm(), 0.0, 1.0);
       if ((poly[i] + s * d - x).squaredNorm() <= r * r) {
