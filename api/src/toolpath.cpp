@@ -154,18 +154,6 @@ std::optional<cam::Machine> resolve_machine(const ToolpathOptions& o, const std:
   return m;
 }
 
-/// An APT statement folded at 72 columns with '$' continuations, breaking after commas.
-void apt_line(std::ostringstream& os, const std::string& s) {
-  std::string rest = s;
-  while (rest.size() > 72) {
-    std::size_t cut = rest.rfind(',', 70);
-    if (cut == std::string::npos) cut = 70;
-    os << rest.substr(0, cut + 1) << "$\n";
-    rest = rest.substr(cut + 1);
-  }
-  os << rest << "\n";
-}
-
 /// Decimals each format prints: of points (and machine XYZ), of axes (and machine angles).
 std::pair<int, int> decimals(CamFormat f) {
   return f == CamFormat::csv ? std::pair<int, int>(9, 12) : std::pair<int, int>(6, 9);
@@ -284,39 +272,6 @@ std::vector<double> measure(Toolpath& tp, const cam::ToolTrajectories& src, doub
     if (tp.machine) tp.machine_axes.push_back(s.written.machine);
   }
   return arc;
-}
-
-/// The CSV (t, x, y, z, i, j, k[, s]) or APT CL data of tp's samples into os.
-void write_points(const Toolpath& tp, const ToolpathOptions& o, bool csv,
-                  const std::vector<double>& arc, std::ostringstream& os) {
-  const auto [point_digits, axis_digits] = decimals(csv ? CamFormat::csv : CamFormat::apt);
-  if (csv) {
-    os << "t,x,y,z,i,j,k" << (o.arc_length ? ",s" : "") << "\n";
-    for (std::size_t i = 0; i < tp.samples.size(); ++i) {
-      const auto& p = tp.samples[i];
-      os << num(p.t, 12);
-      for (int c = 0; c < 3; ++c) os << "," << num(p.written.point(c), point_digits);
-      for (int c = 0; c < 3; ++c) os << "," << num(p.written.axis(c), axis_digits);
-      if (o.arc_length) os << "," << num(arc[i], 9);
-      os << "\n";
-    }
-    return;
-  }
-  bool multax = false;
-  for (const auto& s : tp.samples)
-    multax = multax || cam::detail::angle_between(s.axis, tp.samples.front().axis) > 1e-12;
-  apt_line(os, "PARTNO/QMOTION TOOLPATH");
-  apt_line(os, tp.units == "in" ? "UNITS/INCHES" : "UNITS/MM");
-  if (multax) apt_line(os, "MULTAX/ON");
-  apt_line(os, "FEDRAT/" + num(o.feed, 4));
-  for (const auto& s : tp.samples) {
-    const cam::WrittenEnd& w = s.written;
-    std::string g = "GOTO/" + num(w.point(0)) + "," + num(w.point(1)) + "," + num(w.point(2));
-    if (multax)
-      for (int c = 0; c < 3; ++c) g += "," + num(w.axis(c), axis_digits);
-    apt_line(os, g);
-  }
-  apt_line(os, "FINI");
 }
 
 /// The sampler from the first block's branch within travel nearer the machine's zero, and
@@ -556,10 +511,14 @@ Toolpath toolpath(const Motion& motion, const ToolpathOptions& o) {
   }
   if (f == CamFormat::gcode) machining_time_with_acceleration(tp, arc);
   std::ostringstream os;
+  const ToolpathHeader head = header(tp);
   if (f == CamFormat::gcode) {
-    write_gcode(tp, feeds, axis_digits, dialect, mode, os);
+    write_gcode(os, head, tp.samples, tp.machine_axes, feeds, axis_digits, dialect, mode);
+  } else if (f == CamFormat::csv) {
+    write_csv(os, tp.samples, o.arc_length ? arc : std::vector<double>{}, point_digits,
+              axis_digits);
   } else {
-    write_points(tp, o, f == CamFormat::csv, arc, os);
+    write_apt(os, head, tp.samples, axis_digits);
   }
   write_file_atomic(o.output, os.str());
   return tp;

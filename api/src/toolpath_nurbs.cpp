@@ -53,31 +53,11 @@ void nurbs_toolpath(Toolpath& tp, const cam::ToolTrajectories& src, double k, do
       tp.path_length += k * arc_length(src, xt[j] + (xt[j + 1] - xt[j]) * s / 4,
                                        xt[j] + (xt[j + 1] - xt[j]) * (s + 1) / 4);
   }
-  // The blocks: the first control point is the current position (a rapid move there), the
-  // first block carries G06.2, the order P, the first knot and the feed; every control point
-  // its knot; the last `order` knots stand alone.
-  const auto& c = nt.curve;
-  const int order = c.degree() + 1, kd = exact_decimals(c.knots(), 9);
-  const std::size_t n = c.ctrl().size();
-  std::ostringstream head;
-  head.precision(3);
-  head << "(qmotion toolpath: NURBS of degree " << c.degree() << ", " << n << " control points, "
-       << nt.spans << (nt.spans == 1 ? " span, " : " spans, ")
-       << (nt.exact ? "the exact trajectory" : "a fit")
-       << ", certified deviation <= " << nt.max_deviation_bound << " " << tp.units << ")\n";
-  os << head.str() << cam::comment(cam::Dialect::fanuc, mode.assumption) << "\n"
-     << (tp.units == "in" ? "G20" : "G21") << " G90 G17 G94\n"
-     << mode.words << "\n";
-  auto xyz = [](const Eigen::Vector4d& v) {
-    return " X" + num(v(1) / v(0)) + " Y" + num(v(2) / v(0)) + " Z" + num(v(3) / v(0));
-  };
-  os << "G0" << xyz(c.ctrl().front()) << "\n";
-  for (std::size_t i = 0; i < n; ++i)
-    os << (i == 0 ? "G06.2 P" + std::to_string(order) + " " : "") << "K" << num(c.knots()[i], kd)
-       << xyz(c.ctrl()[i]) << " R" << num(c.ctrl()[i](0)) << (i == 0 ? " F" + num(tp.feed, 4) : "")
-       << "\n";
-  for (std::size_t i = n; i < c.knots().size(); ++i) os << "K" << num(c.knots()[i], kd) << "\n";
-  os << "M2\n";
+  io::NurbsHeader nh;
+  nh.spans = nt.spans;
+  nh.exact = nt.exact;
+  nh.bound = nt.max_deviation_bound;
+  io::write_nurbs_gcode(os, header(tp), nt.curve, nh, mode);
   tp.nurbs = std::move(nt);
 }
 
