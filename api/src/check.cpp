@@ -40,15 +40,17 @@ struct CheckFace {
   int degree_u = 0, degree_v = 0;
 };
 
-CheckFace check_face(const sweep::NurbsSurface<double>& s,
+CheckFace check_face(sweep::NurbsSurface<double> s,
                      std::function<Eigen::Vector3d(double, double)> value) {
   CheckFace c{s.knots_u.front(), s.knots_u.back(), s.knots_v.front(), s.knots_v.back(),
               std::move(value)};
-  if (!c.value) c.value = [s](double u, double v) { return sweep::evaluate(s, u, v); };
   for (const auto& row : s.weights)
     for (double w : row) c.weights_positive = c.weights_positive && w > 0;
   c.degree_u = s.degree_u;
   c.degree_v = s.degree_v;
+  // The surface moves into its evaluator: a file near the size limit is held once.
+  if (!c.value)
+    c.value = [s = std::move(s)](double u, double v) { return sweep::evaluate(s, u, v); };
   return c;
 }
 
@@ -71,22 +73,12 @@ json check_motion(const std::string& file, const Motion& lm,
   std::string file_units = lm.units();
   json out{{"file", file}, {"kind", surface ? "surface" : "curve"}};
   if (e == ".json") {
-    const json doc = read_json_file(file);
-    if (doc.is_object() && doc.contains("units") && doc["units"].is_string())
-      file_units = canonical_unit(doc["units"].get<std::string>(), file + ": units");
+    NurbsFile doc = read_nurbs_file(file, surface);
+    if (!doc.units.empty()) file_units = canonical_unit(doc.units, file + ": units");
     if (surface) {
-      if (doc.is_object() && doc.value("type", "") == "nurbs_shell") {
-        if (!doc.contains("faces") || !doc["faces"].is_array() || doc["faces"].empty())
-          throw Error(Errc::invalid_input, file + ": faces: expected an array of nurbs_surface");
-        for (std::size_t k = 0; k < doc["faces"].size(); ++k)
-          faces.push_back(check_face(
-              surface_from_json(doc["faces"][k], file + ": face " + std::to_string(k + 1)),
-              nullptr));
-      } else {
-        faces.push_back(check_face(surface_from_json(doc, file), nullptr));
-      }
+      for (auto& s : doc.faces) faces.push_back(check_face(std::move(s), nullptr));
     } else {
-      const auto c = curve_from_json(doc, file);
+      const auto& c = doc.curve;
       faces.push_back(check_curve(c, [c](double t, double) { return sweep::evaluate(c, t); }));
     }
     out["reader"] = "qmotion JSON";

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <qmotion/io/json_number.hpp>
 #include <qmotion/io/json_text.hpp>
 #include <qmotion/io/nurbs_json.hpp>
@@ -209,6 +210,78 @@ TEST(NurbsJson, LongArraysAreWrittenInBlocksWithTheBytesOfOneCore) {
   EXPECT_FALSE(fs::exists(d / "half.json"));
   EXPECT_EQ(std::distance(fs::directory_iterator(d), fs::directory_iterator()), 4);
   fs::remove_all(d);
+}
+
+/// A 3 x 4 bilinear-by-cubic surface with awkward numbers, for the file reader.
+sweep::NurbsSurface<double> awkward_surface(double shift) {
+  sweep::NurbsSurface<double> s{1, 2, {0, 0, 0.5, 1, 1}, {0, 0, 0, 1.0 / 3, 1, 1, 1}, {}, {}};
+  for (int i = 0; i < 3; ++i) {
+    s.points.push_back({});
+    s.weights.push_back({});
+    for (int k = 0; k < 4; ++k) {
+      s.points.back().emplace_back(i / 3.0 + shift, -2e-300 * k, 1e21 * i - 0.1 * k);
+      s.weights.back().push_back(1.0 / (7 + i + k));
+    }
+  }
+  return s;
+}
+
+void write_text(const std::filesystem::path& p, const std::string& text) {
+  std::ofstream(p, std::ios::binary) << text;
+}
+
+/// read_nurbs_file gives back what was written, bit for bit, through its scanner and
+/// through the tree (a file the scanner declines), and refuses as the tree readers do.
+TEST(NurbsJson, FilesReadBackBitForBitThroughEitherReader) {
+  const auto a = awkward_surface(0), b = awkward_surface(1e-9);
+  const auto same = [](const sweep::NurbsSurface<double>& x, const sweep::NurbsSurface<double>& y) {
+    return x.degree_u == y.degree_u && x.degree_v == y.degree_v && x.knots_u == y.knots_u &&
+           x.knots_v == y.knots_v && x.points == y.points && x.weights == y.weights;
+  };
+  const auto shell = scratch_path("nurbs_read", "shell.json");
+  io::write_shell_json(shell.string(), {a, b}, true, {{"units", "in"}});
+  io::NurbsFile f = io::read_nurbs_file(shell.string(), true);
+  EXPECT_EQ(f.units, "in");
+  ASSERT_EQ(f.faces.size(), 2u);
+  EXPECT_TRUE(same(f.faces[0], a));
+  EXPECT_TRUE(same(f.faces[1], b));
+  const auto surface = scratch_path("nurbs_read", "surface.json");
+  io::write_surface_json(surface.string(), a);
+  f = io::read_nurbs_file(surface.string(), true);
+  EXPECT_EQ(f.units, "");
+  ASSERT_EQ(f.faces.size(), 1u);
+  EXPECT_TRUE(same(f.faces[0], a));
+  // A weight written as an exact fraction: the scanner declines it, the tree reads it.
+  nlohmann::json tree = io::surface_to_json(a);
+  tree["weights"][0][0] = "1/7";
+  write_text(surface, tree.dump());
+  f = io::read_nurbs_file(surface.string(), true);
+  ASSERT_EQ(f.faces.size(), 1u);
+  EXPECT_DOUBLE_EQ(f.faces[0].weights[0][0], 1.0 / 7);
+  EXPECT_EQ(f.faces[0].points, a.points);
+  // A curve, its weights left out (all 1).
+  const sweep::NurbsCurve<double> c{
+      2, {0, 0, 0, 1, 1, 1}, {{0, 0, 0}, {1, 2, 3}, {0.1, 0, 1e-7}}, {1, 1, 1}};
+  const auto curve = scratch_path("nurbs_read", "curve.json");
+  nlohmann::json ct = io::curve_to_json(c);
+  ct.erase("weights");
+  write_text(curve, ct.dump());
+  f = io::read_nurbs_file(curve.string(), false);
+  EXPECT_EQ(f.curve.points, c.points);
+  EXPECT_EQ(f.curve.weights, c.weights);
+  // Refusals, worded by the tree reader and naming the face.
+  nlohmann::json bad = nlohmann::json::parse(io::shell_json_text({a, b}, true));
+  bad["faces"][1]["weights"][2][3] = 0;
+  write_text(shell, bad.dump());
+  EXPECT_TRUE(throws_error([&] { io::read_nurbs_file(shell.string(), true); }, Errc::invalid_input,
+                           {"face 2", "weights[2][3]", "positive"}));
+  bad = io::surface_to_json(a);
+  bad["knots_v"][2] = 0.9;  // decreasing
+  write_text(surface, bad.dump());
+  EXPECT_TRUE(throws_error([&] { io::read_nurbs_file(surface.string(), true); },
+                           Errc::invalid_input, {"surface.json", "v: "}));
+  EXPECT_TRUE(throws_error([&] { io::read_nurbs_file(surface.string(), false); },
+                           Errc::invalid_input, {"surface.json", "type"}));
 }
 
 TEST(NurbsJson, BadProfilesAreRefused) {

@@ -44,4 +44,20 @@ sweep::NurbsCurve<double> curve_from_json(const nlohmann::json& j, const std::st
 /// Reads and validates a nurbs_surface (docs/formats.md layout); throws Errc::invalid_input.
 sweep::NurbsSurface<double> surface_from_json(const nlohmann::json& j, const std::string& where);
 
+/// A NURBS JSON file (docs/formats.md) as `check` reads it: its units when it states them,
+/// and a curve, or the faces of a surface or a shell.
+struct NurbsFile {
+  std::string units;                               ///< as written; empty when the file states none
+  sweep::NurbsCurve<double> curve;                 ///< when read as a curve
+  std::vector<sweep::NurbsSurface<double>> faces;  ///< when read as a surface or a shell
+};
+
+/// Reads the file at `path` as a curve (nurbs_curve), or as a surface (a nurbs_surface, or
+/// each face of a nurbs_shell). The poles, knots and weights are scanned in place, a row at a
+/// time, and the text's pages given back as they are read, so a file near the 512 MiB limit
+/// is never held beside a tree of it; anything unusual is read through the tree instead,
+/// which words the refusal as curve_from_json and surface_from_json do (naming the file, the
+/// face and the field).
+NurbsFile read_nurbs_file(const std::string& path, bool surface);
+
 }  // namespace qmotion::io
