@@ -8,6 +8,7 @@
 #include <qmotion/api/evaluate.hpp>
 #include <qmotion/api/export.hpp>
 #include <qmotion/api/interpolate.hpp>
+#include <qmotion/api/self_intersection.hpp>
 #include <qmotion/io/json_number.hpp>
 #include <qmotion/io/motion_json.hpp>
 #include <qmotion/io/occt.hpp>
@@ -218,6 +219,71 @@ void BM_ProveTubeFree(benchmark::State& st) {
   st.counters["depth"] = p.depth;
 }
 BENCHMARK(BM_ProveTubeFree)->Arg(2)->Arg(8)->Arg(32)->Unit(benchmark::kMillisecond);
+
+/// The 2000-pose helix of tests/bench/memory.sh at 2000 poses (radius 50 mm, pitch 50 mm, 10
+/// turns, the rotation following the tangent with a small roll), interpolated once.
+const Motion& helix_2000() {
+  static const Motion m = [] {
+    const fs::path path = fs::temp_directory_path() / "qmotion_bench_helix_2000.json";
+    {
+      std::ofstream f(path);
+      f.precision(17);
+      f << "{\"units\":\"mm\",\"poses\":[";
+      const int n = 2000;
+      for (int i = 0; i < n; ++i) {
+        const double a = 20 * M_PI * i / (n - 1), h = (a + M_PI / 2) / 2,
+                     r = 0.1 * std::sin(3 * a) / 2;
+        f << (i ? "," : "") << "{\"t\":" << static_cast<double>(i) / (n - 1) << ",\"position\":["
+          << 50 * std::cos(a) << "," << 50 * std::sin(a) << "," << 50 * a / (2 * M_PI)
+          << "],\"rotation\":{\"quaternion\":[" << std::cos(h) * std::cos(r) << ","
+          << std::cos(h) * std::sin(r) << "," << std::sin(h) * std::sin(r) << ","
+          << std::sin(h) * std::cos(r) << "]}}";
+      }
+      f << "]}";
+    }
+    auto motion = qmotion::interpolate(io::read_poses(path.string()), {}).motion;
+    fs::remove(path);
+    return motion;
+  }();
+  return m;
+}
+
+/// A 2000-pose circle sweep written as `qmotion sweep` writes it, st.range(0): 0 JSON, 1 STEP;
+/// st.range(1): 1 with the default self-intersection check, 0 without. With the check alone
+/// (below), where the time goes before OpenCASCADE starts (issue 56, item 4).
+void BM_CircleSweep2000(benchmark::State& st) {
+  const bool step = st.range(0) != 0, check = st.range(1) != 0;
+  ExportOptions o;
+  o.output =
+      (fs::temp_directory_path() / (step ? "bench_circle.step" : "bench_circle.json")).string();
+  o.self_intersection_check = check;
+  const auto circle = io::read_profile("circle:5");
+  const Motion& m = helix_2000();
+  for (auto _ : st) export_geometry(m, Geometry::sweep(circle), o);
+  fs::remove(o.output);
+  st.SetLabel(std::string(step ? "STEP" : "JSON") +
+              (check ? ", default self-intersection check" : ", no check"));
+}
+BENCHMARK(BM_CircleSweep2000)
+    ->Args({0, 1})
+    ->Args({0, 0})
+    ->Args({1, 1})
+    ->Args({1, 0})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+/// The default self-intersection check of that sweep alone (sweep_self_intersections: a
+/// tessellation and CGAL's self_intersections).
+void BM_CircleSweep2000SelfIntersectionCheck(benchmark::State& st) {
+  const auto circle = io::read_profile("circle:5");
+  const Motion& m = helix_2000();
+  SelfIntersection si;
+  for (auto _ : st) si = sweep_self_intersections(m, circle);
+  st.counters["samples_t"] = si.samples_t;
+  st.counters["samples_v"] = si.samples_v;
+  st.counters["crossing_pairs"] = static_cast<double>(si.pairs);
+}
+BENCHMARK(BM_CircleSweep2000SelfIntersectionCheck)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 
