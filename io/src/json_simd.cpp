@@ -8,6 +8,7 @@
 #include <emmintrin.h>
 #endif
 
+#include <algorithm>
 #include <atomic>
 #include <charconv>
 #include <cstdint>
@@ -420,6 +421,12 @@ bool members(std::string_view s, std::vector<Member>& out) {
     const std::size_t close = s.find_first_of("\\\"", i + 1);
     if (close == std::string_view::npos || s[close] != '"') return false;  // an escape: decline
     const std::string_view key = s.substr(i + 1, close - i - 1);
+    // No parser reads the keys: what JSON forbids in a string (a control character, bytes
+    // that are not UTF-8) declines here, and the full parser words it.
+    if (std::any_of(key.begin(), key.end(),
+                    [](char c) { return static_cast<unsigned char>(c) < 0x20; }) ||
+        !simdjson::validate_utf8(key.data(), key.size()))
+      return false;
     i = skip_spaces(s, close + 1);
     if (i == s.size() || s[i] != ':') return false;
     i = skip_spaces(s, i + 1);

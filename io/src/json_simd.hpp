@@ -92,8 +92,9 @@ struct Member {
 /// The members of the JSON object that is `text` (white space around it allowed), found by
 /// a scanner that indexes nothing: each value's extent comes from its brackets and quotes,
 /// and is not validated (read_member does that when it reads the value). False when the text
-/// is not an object of that form, or a key holds an escape: the caller then reads the text
-/// with a full parser, which words any refusal.
+/// is not an object of that form, or a key holds an escape, a control character or bytes
+/// that are not UTF-8: the caller then reads the text with a full parser, which words any
+/// refusal.
 bool members(std::string_view text, std::vector<Member>& out);
 
 /// Calls each(slice) with the text of each element of the JSON array that is `text`, the

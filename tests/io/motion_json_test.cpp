@@ -249,6 +249,24 @@ TEST(MotionJson, ControlPointsReadLeanKeepTheirExactDecimals) {
 }
 #endif
 
+/// The fast reader reads no key with a parser: a key JSON forbids (a control character,
+/// bytes that are not UTF-8) leaves the file to the full reader, which refuses it, as it
+/// refuses it inside a member (found by fuzz_nurbs through the shared member scanner).
+TEST(MotionJson, AKeyJsonForbidsIsLeftToTheFullReader) {
+  const std::string good = R"({"type": "q-motion", "basis": "bezier", "degree": 1,
+    "param_range": [0, 1], "control_points": [[1, 0, 0, 0, 0, 0, 0, 0], [1, 0, 0, 0, 0, 0, 0, 1]],
+    "note": 1})";
+  ASSERT_TRUE(io::parse_motion_fast(good, "good.json"));
+  for (const std::string& bad :
+       {std::string("no\x01te"), std::string("no\xfete"), std::string("no\0te", 5)}) {
+    std::string text = good;
+    text.replace(text.find("note"), 4, bad);
+    EXPECT_FALSE(io::parse_motion_fast(text, "bad.json"));
+    EXPECT_TRUE(
+        throws_error([&] { io::parse_json(text, "bad.json"); }, Errc::invalid_input, {"bad.json"}));
+  }
+}
+
 TEST(MotionJson, TheFastReaderReadsWhatTheDomReaderReads) {
   int fast = 0;
   for (const auto& [name, text] : motion_texts()) {
