@@ -20,9 +20,6 @@ constexpr double kPi = 3.14159265358979323846;
 using io::kNurbsDigits;
 using io::rounded;
 
-/// x printed with `digits` decimals (io::fixed).
-inline std::string num(double x, int digits = 6) { return io::fixed(x, digits); }
-
 /// The length of the exact trajectory over [t0, t1] (Gauss-Legendre on the velocity).
 inline double arc_length(const cam::ToolTrajectories& src, double t0, double t1) {
   double len = 0;

@@ -35,7 +35,7 @@ void nurbs_toolpath(Toolpath& tp, const cam::ToolTrajectories& src, double k, do
   nt.max_deviation_bound = (cn.bound + src.fit_error) * k;
   for (const auto& v : nt.curve.ctrl())
     if (!(v(0) >= 1e-4 && v(0) <= 99.9999))
-      throw Error(Errc::internal, "a NURBS weight outside 0.0001..99.9999: " + num(v(0)));
+      throw Error(Errc::internal, "a NURBS weight outside 0.0001..99.9999: " + io::fixed(v(0)));
   // Dense confirmation and the path length, span by span (span j of the curve stands for
   // span j of t_knots).
   std::vector<double> xt = cn.t_knots;

@@ -507,6 +507,26 @@ bool read_member(std::string_view slice, const std::function<bool(sj::value)>& r
   return doc.current_location().get(rest) == simdjson::OUT_OF_BOUNDS;
 }
 
+bool string_value(std::string_view slice, std::string& out) {
+  return read_member(slice, [&](sj::value v) {
+    std::string_view s;
+    if (v.get_string().get(s)) return false;
+    out = std::string(s);
+    return true;
+  });
+}
+
+bool integer_value(std::string_view slice, std::int64_t lo, std::int64_t hi, int& out) {
+  return read_member(slice, [&](sj::value v) {
+    sj::json_type t;
+    std::int64_t g = 0;
+    if (v.type().get(t) || t != sj::json_type::number || v.get_int64().get(g) || g < lo || g > hi)
+      return false;
+    out = static_cast<int>(g);
+    return true;
+  });
+}
+
 bool read_value(std::string_view text, const std::function<bool(sj::value)>& read) {
   const simdjson::padded_string copy(text);
   sj::parser parser;

@@ -3,6 +3,7 @@
 #pragma once
 #include <simdjson.h>
 
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -114,6 +115,12 @@ bool check_slice(std::string_view slice, std::size_t depth);
 /// copy, since simdjson does not hand out a document's scalar root as a value. False when the
 /// slice is not one valid JSON value or `read` returns false.
 bool read_member(std::string_view slice, const std::function<bool(sj::value)>& read);
+
+/// The JSON string whose text is `slice` (read by read_member) into `out`; false for
+/// anything else.
+bool string_value(std::string_view slice, std::string& out);
+/// The JSON integer from lo to hi whose text is `slice` into `out`; false for anything else.
+bool integer_value(std::string_view slice, std::int64_t lo, std::int64_t hi, int& out);
 
 /// Reads `text`, one JSON value's text cut out of a document (sj::array::raw_json), with a
 /// parser of its own, and hands the value to `read`; false when it is not valid or `read`

@@ -202,29 +202,16 @@ std::optional<MotionFile> parse_motion_view(std::string_view text, const std::st
   for (const auto& [key, raw] : root) {
     bool ok = true;
     if (key == "type") {
-      ok = simd::read_member(raw, [&](sj::value v) {
-        std::string_view t;
-        return !v.get_string().get(t) && t == "q-motion";
-      });
+      std::string t;
+      ok = simd::string_value(raw, t) && t == "q-motion";
       type = true;
     } else if (key == "basis") {
-      ok = simd::read_member(raw, [&](sj::value v) {
-        std::string_view b;
-        if (v.get_string().get(b) || (b != "bezier" && b != "bspline")) return false;
-        f.basis = b == "bezier" ? kernel::Basis::bezier : kernel::Basis::bspline;
-        return true;
-      });
+      std::string b;
+      ok = simd::string_value(raw, b) && (b == "bezier" || b == "bspline");
+      f.basis = b == "bezier" ? kernel::Basis::bezier : kernel::Basis::bspline;
       basis = true;
     } else if (key == "degree") {
-      ok = simd::read_member(raw, [&](sj::value v) {
-        std::int64_t g = 0;
-        sj::json_type t;
-        if (v.type().get(t) || t != sj::json_type::number || v.get_int64().get(g) || g < 0 ||
-            g > 200)
-          return false;
-        f.degree = static_cast<int>(g);
-        return true;
-      });
+      ok = simd::integer_value(raw, 0, 200, f.degree);
       degree = true;
     } else if (key == "param_range") {
       std::vector<Number> r;
@@ -232,12 +219,7 @@ std::optional<MotionFile> parse_motion_view(std::string_view text, const std::st
       if (ok) f.range = {r[0], r[1]};
       range = true;
     } else if (key == "units") {
-      ok = simd::read_member(raw, [&](sj::value v) {
-        std::string_view u;
-        if (v.get_string().get(u) || !is_known_unit(std::string(u))) return false;
-        f.units = std::string(u);
-        return true;
-      });
+      ok = simd::string_value(raw, f.units) && is_known_unit(f.units);
     } else if (key == "control_points") {
       ok = raw.front() == '[' && control_points(raw, f.ctrl);
       ctrl = true;

@@ -15,24 +15,9 @@ using json = nlohmann::json;
 /// Called with each part of the text once read: its pages may go.
 using Done = std::function<void(std::string_view)>;
 
-bool string_member(std::string_view raw, std::string& out) {
-  return simd::read_member(raw, [&](sj::value v) {
-    std::string_view s;
-    if (v.get_string().get(s)) return false;
-    out = std::string(s);
-    return true;
-  });
-}
-
+/// A degree the scanner takes (a larger one goes to the tree, which words any refusal).
 bool degree_member(std::string_view raw, int& out) {
-  return simd::read_member(raw, [&](sj::value v) {
-    sj::json_type t;
-    std::int64_t g = 0;
-    if (v.type().get(t) || t != sj::json_type::number || v.get_int64().get(g) || g < 1 || g > 1000)
-      return false;
-    out = static_cast<int>(g);
-    return true;
-  });
+  return simd::integer_value(raw, 1, 1000, out);
 }
 
 bool doubles_member(std::string_view raw, std::vector<double>& out) {
@@ -81,10 +66,9 @@ bool fast_surface(std::string_view text, sweep::NurbsSurface<double>& s, const D
   int known = 0;  // of the seven members a surface has (each once: unique_members)
   for (const auto& [key, raw] : m) {
     bool ok = true;
-    ++known;
     if (key == "type") {
       std::string t;
-      ok = string_member(raw, t) && t == "nurbs_surface";
+      ok = simd::string_value(raw, t) && t == "nurbs_surface";
     } else if (key == "degree_u" || key == "degree_v") {
       ok = degree_member(raw, key == "degree_u" ? s.degree_u : s.degree_v);
     } else if (key == "knots_u" || key == "knots_v") {
@@ -99,10 +83,11 @@ bool fast_surface(std::string_view text, sweep::NurbsSurface<double>& s, const D
       ok = simd::elements(
           raw, [&](std::string_view row) { return doubles_member(row, s.weights.emplace_back()); });
     } else {
-      ok = simd::check_slice(raw, 1);
-      --known;
+      if (!simd::check_slice(raw, 1)) return false;
+      continue;  // another member: not one of the seven
     }
     if (!ok) return false;
+    ++known;
   }
   if (known != 7 || s.points.empty() || s.weights.size() != s.points.size()) return false;
   for (std::size_t i = 0; i < s.points.size(); ++i) {
@@ -124,7 +109,7 @@ bool fast_curve(std::string_view text, sweep::NurbsCurve<double>& c) {
     bool ok = true;
     if (key == "type") {
       std::string t;
-      ok = type = string_member(raw, t) && t == "nurbs_curve";
+      ok = type = simd::string_value(raw, t) && t == "nurbs_curve";
     } else if (key == "degree") {
       ok = degree = degree_member(raw, c.degree);
     } else if (key == "knots") {
@@ -153,8 +138,9 @@ std::optional<NurbsFile> fast_file(std::string_view text, bool surface, const Do
   NurbsFile f;
   std::string type;
   for (const auto& [key, raw] : root) {
-    if (key == "type" && !string_member(raw, type)) return std::nullopt;
-    if (key == "units" && raw.front() == '"' && !string_member(raw, f.units)) return std::nullopt;
+    if (key == "type" && !simd::string_value(raw, type)) return std::nullopt;
+    if (key == "units" && raw.front() == '"' && !simd::string_value(raw, f.units))
+      return std::nullopt;
   }
   if (!surface) {
     if (!fast_curve(text, f.curve)) return std::nullopt;

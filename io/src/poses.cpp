@@ -257,10 +257,6 @@ bool fast_rotation(sj::value v, RotationInput& out) {
   return forms == 1;
 }
 
-}  // namespace
-
-namespace {
-
 /// One pose object into `in`; false for anything the tree reader should word.
 bool fast_pose(sj::value e, PoseInput& in) {
   sj::object p;
@@ -301,12 +297,7 @@ std::optional<PoseSet> simd::poses_text(std::string_view text, const std::string
   for (const auto& [key, value] : root) {
     bool ok = true;
     if (key == "units") {
-      ok = !units && read_member(value, [&](sj::value v) {
-        std::string_view u;
-        if (v.get_string().get(u) || !is_known_unit(std::string(u))) return false;
-        set.units = std::string(u);
-        return true;
-      });
+      ok = !units && string_value(value, set.units) && is_known_unit(set.units);
       units = true;
     } else if (key == "poses") {
       // Pose by pose: each pose's text is indexed alone (the shared parser), never the array;

@@ -345,8 +345,7 @@ class BezierJoiner {
 
  public:
   BezierJoiner(int degree, std::vector<S> knots)
-      : degree_(degree),
-        d_(static_cast<std::size_t>(degree)),
+      : d_(static_cast<std::size_t>(degree)),
         n_(knots.size() - d_ - 1),
         knots_(std::move(knots)),
         span_(detail::nonempty_spans(knots_)) {
@@ -373,7 +372,7 @@ class BezierJoiner {
     if (added_ != span_.size())
       throw Error(Errc::internal, "Bezier pieces do not match the knot vector");
     while (ctrl_.size() < n_) pole();
-    return BSpline<Coef>::make(degree_, std::move(knots_), std::move(ctrl_));
+    return BSpline<Coef>::make(static_cast<int>(d_), std::move(knots_), std::move(ctrl_));
   }
 
  private:
@@ -383,10 +382,8 @@ class BezierJoiner {
         throw Error(Errc::internal, "Bezier joiner: a pole's piece was dropped");
       return held_[k - held_first_];
     };
-    first_ = std::max(first_, held_first_);
     ctrl_.push_back(detail::joined_pole(knots_, d_, n_, ctrl_.size(), span_, first_, piece, work_));
   }
-  int degree_;
   std::size_t d_, n_;
   std::vector<S> knots_;
   std::vector<std::size_t> span_;

@@ -79,11 +79,9 @@ namespace detail {
 /// The Bezier pieces of matrix_from_factors' spline, span by span on the factors' common
 /// breakpoints: start(d, knots) is told the spline's degree and knot vector first, then each
 /// piece is handed to visit(piece) as it is made (an lvalue visit may move from; its storage
-/// is otherwise reused for the next piece); returns the degree and knot vector
-/// (from_bezier_pieces assembles the spline from them and the pieces).
+/// is otherwise reused for the next piece; kernel::BezierJoiner assembles the spline).
 template <typename Scalar, typename Start, typename Visit>
-std::pair<int, std::vector<Scalar>> matrix_pieces(const MotionFactors<Scalar>& f, Start&& start,
-                                                  Visit&& visit) {
+void matrix_pieces(const MotionFactors<Scalar>& f, Start&& start, Visit&& visit) {
   using V3 = Eigen::Matrix<Scalar, 3, 1>;
   using M3 = Eigen::Matrix<Scalar, 3, 3>;
   using M4 = Eigen::Matrix<Scalar, 4, 4>;
@@ -193,7 +191,6 @@ std::pair<int, std::vector<Scalar>> matrix_pieces(const MotionFactors<Scalar>& f
     visit(piece);  // may move the piece away (matrix_from_factors keeps it)
     c = std::move(piece).take_coeffs();
   }
-  return {d, std::move(knots)};
 }
 
 }  // namespace detail
@@ -207,11 +204,11 @@ std::pair<int, std::vector<Scalar>> matrix_pieces(const MotionFactors<Scalar>& f
 /// without it). Exact for exact Scalar.
 template <typename Scalar>
 kernel::BSpline<Eigen::Matrix<Scalar, 4, 4>> matrix_from_factors(const MotionFactors<Scalar>& f) {
-  std::vector<kernel::Bernstein<Eigen::Matrix<Scalar, 4, 4>>> pieces;
-  auto [d, knots] = detail::matrix_pieces(
-      f, [](int, const std::vector<Scalar>&) {},
-      [&](auto&& piece) { pieces.push_back(std::move(piece)); });
-  return kernel::from_bezier_pieces(pieces, d, std::move(knots));
+  std::optional<kernel::BezierJoiner<Eigen::Matrix<Scalar, 4, 4>>> joiner;
+  detail::matrix_pieces(
+      f, [&](int d, const std::vector<Scalar>& knots) { joiner.emplace(d, knots); },
+      [&](auto&& piece) { joiner->add(std::move(piece)); });
+  return std::move(*joiner).finish();
 }
 
 /// The homogeneous trajectories y_j = M X_j of the points X_j (matrix_from_factors' M), all
