@@ -11,7 +11,7 @@
 #include <qmotion/sweep/body.hpp>
 #include <qmotion/sweep/trajectory.hpp>
 
-#include "volume_detail.hpp"
+#include "volume_preview.hpp"
 
 namespace qmotion {
 namespace {

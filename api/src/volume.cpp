@@ -1,6 +1,6 @@
 // api/src/volume.cpp: `qmotion volume`, its report and its outputs, the exact pipe faces of a
 // sphere or ball cutter, and `render --body` (docs/guide/volume.md). The enclosing mesh itself
-// is in volume_mesh.cpp.
+// is sweep::swept_volume (sweep/src/volume_mesh.cpp).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -17,7 +17,7 @@
 #include <qmotion/sweep/pipe_reach.hpp>
 #include <qmotion/sweep/trajectory.hpp>
 
-#include "volume_detail.hpp"
+#include "volume_preview.hpp"
 
 namespace qmotion {
 
@@ -29,7 +29,7 @@ SweptVolume detail::preview_volume(const Motion& motion, const std::string& body
   sweep::Body body = io::read_body(body_spec);
   sweep::validate(body);
   SweptVolume v = swept_volume(
-      motion, body, tol ? *tol : 1e-2 * detail::sampled_box(motion, body).diagonal().norm());
+      motion, body, tol ? *tol : 1e-2 * sweep::sampled_swept_box(motion, body).diagonal().norm());
   if (body_out) *body_out = std::move(body);
   return v;
 }

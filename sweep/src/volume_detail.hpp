@@ -1,14 +1,14 @@
-// api/src/volume_detail.hpp: what volume.cpp, volume_mesh.cpp, volume_adaptive.cpp and
-// volume_written.cpp share.
+// sweep/src/volume_detail.hpp: what the mesher's files (volume_mesh.cpp, volume_adaptive.cpp,
+// volume_tets.cpp and volume_written.cpp) share.
 #pragma once
 #include <Eigen/Geometry>
 #include <array>
 #include <optional>
-#include <qmotion/api/volume.hpp>
 #include <qmotion/kernel/outward.hpp>
 #include <qmotion/motion.hpp>
 #include <qmotion/sweep/body.hpp>
 #include <qmotion/sweep/swept_volume.hpp>
+#include <qmotion/sweep/volume_mesh.hpp>
 #include <string>
 #include <vector>
 
@@ -16,7 +16,7 @@ namespace qmotion::sweep {
 class HullPieces;
 }
 
-namespace qmotion::detail {
+namespace qmotion::sweep::mesher {
 
 /// A certified enclosing mesh as it will be written (rounded when float32), from either
 /// route: V inside, closed, embedded, each vertex within distance_bound (<= T) of V.
@@ -37,13 +37,13 @@ struct EnclosingMesh {
 
 /// The adaptive route (volume_adaptive.cpp), for every body: an octree refined where a
 /// triangle or a vertex is not certified.
-EnclosingMesh adaptive_mesh(const Motion& motion, const sweep::SweptVolumeTree& tree,
+EnclosingMesh adaptive_mesh(const qmotion::Motion& motion, const sweep::SweptVolumeTree& tree,
                             const sweep::HullPieces& hulls, double T,
                             const VolumeRounding& rounding);
 
 /// Errc::numerical_failure when T is too fine for the octree about box (checked before any
 /// work, on the sampled box).
-void refuse_octree(const Motion& motion, const Eigen::AlignedBox3d& box, double T);
+void refuse_octree(const qmotion::Motion& motion, const Eigen::AlignedBox3d& box, double T);
 
 /// The volume inside a closed, outward-oriented mesh (the divergence theorem about `o`),
 /// rounded outward: the exact volume of the mesh with these vertices lies in it.
@@ -52,18 +52,10 @@ kernel::Interval enclosed_volume(const std::vector<Eigen::Vector3d>& vertices,
                                  const Eigen::Vector3d& o);
 
 /// Errc::invalid_input: float32 rounding by e is too coarse for the tolerance T.
-[[noreturn]] void refuse_float32(const Motion& motion, double e, double T,
+[[noreturn]] void refuse_float32(const qmotion::Motion& motion, double e, double T,
                                  const VolumeRounding& rounding);
 /// Errc::numerical_failure beyond 10^7 triangles.
-void refuse_size(const Motion& motion, double T, std::size_t triangles);
-
-/// The bounding box of V, sampled: the body's triangulation at 64 times a segment.
-Eigen::AlignedBox3d sampled_box(const Motion& m, const sweep::Body& body);
-
-/// The body of a preview (render --body, view --volume) and its mesh, at tol (--body-tol) or
-/// by default at 1e-2 of the sampled box's diagonal; the body read goes to body_out if given.
-SweptVolume preview_volume(const Motion& motion, const std::string& body_spec,
-                           std::optional<double> tol, sweep::Body* body_out);
+void refuse_size(const qmotion::Motion& motion, double T, std::size_t triangles);
 
 /// The largest distance float32 rounding moves a point whose coordinates are at most
 /// `largest` in magnitude: sqrt(3) 2^-24 largest (round to nearest, normal floats), with a
@@ -84,4 +76,4 @@ void round_to_float32(std::vector<Eigen::Vector3d>& vertices, double scale);
 bool closed_as_written(const std::vector<Eigen::Vector3d>& vertices,
                        const std::vector<std::array<int, 3>>& triangles);
 
-}  // namespace qmotion::detail
+}  // namespace qmotion::sweep::mesher

@@ -1,4 +1,4 @@
-// api/src/volume_adaptive.cpp: the adaptive enclosing mesh of `volume` (docs/guide/volume.md,
+// sweep/src/volume_adaptive.cpp: the adaptive enclosing mesh of `volume` (docs/guide/volume.md,
 // "The adaptive mesh"; volume_detail.hpp).
 //
 // The surface is the level tau of the piecewise-linear interpolant g, over the octree's
@@ -31,7 +31,7 @@
 #include "volume_octree.hpp"
 #include "volume_tets.hpp"
 
-namespace qmotion::detail {
+namespace qmotion::sweep::mesher {
 namespace {
 
 /// The level, in T: the triangles may sag by about T - tau towards V between vertices at tau
@@ -68,8 +68,9 @@ struct Bound {
 class Mesher {
  public:
   /// eps: how far from tau a corner's value is kept.
-  Mesher(const Motion& motion, const sweep::SweptVolumeTree& tree, const sweep::HullPieces& hulls,
-         const Eigen::AlignedBox3d& box, double T, double tau, double e, double eps)
+  Mesher(const qmotion::Motion& motion, const sweep::SweptVolumeTree& tree,
+         const sweep::HullPieces& hulls, const Eigen::AlignedBox3d& box, double T, double tau,
+         double e, double eps)
       : motion_(motion),
         tree_(tree),
         hulls_(hulls),
@@ -454,7 +455,7 @@ class Mesher {
     }
   }
 
-  const Motion& motion_;
+  const qmotion::Motion& motion_;
   const sweep::SweptVolumeTree& tree_;
   const sweep::HullPieces& hulls_;
   double T_, tau_, e_, eps_, scale_;
@@ -473,7 +474,7 @@ class Mesher {
 
 }  // namespace
 
-void refuse_octree(const Motion& motion, const Eigen::AlignedBox3d& box, double T) {
+void refuse_octree(const qmotion::Motion& motion, const Eigen::AlignedBox3d& box, double T) {
   // The finest cell is a root's 2^-14; below about 8 of them the surface has no room.
   const double finest = Mesher::root_edge(box, T) / static_cast<double>(1 << Octree::kFinest);
   if (T < 8 * finest)
@@ -485,7 +486,7 @@ void refuse_octree(const Motion& motion, const Eigen::AlignedBox3d& box, double 
                     "): raise --tol");
 }
 
-EnclosingMesh adaptive_mesh(const Motion& motion, const sweep::SweptVolumeTree& tree,
+EnclosingMesh adaptive_mesh(const qmotion::Motion& motion, const sweep::SweptVolumeTree& tree,
                             const sweep::HullPieces& hulls, double T,
                             const VolumeRounding& rounding) {
   const Eigen::AlignedBox3d box = tree.bounds();
@@ -527,4 +528,4 @@ EnclosingMesh adaptive_mesh(const Motion& motion, const sweep::SweptVolumeTree& 
   return m;
 }
 
-}  // namespace qmotion::detail
+}  // namespace qmotion::sweep::mesher

@@ -1,10 +1,10 @@
-// api/src/volume_octree.cpp: the balanced octree and its conforming tetrahedra
+// sweep/src/volume_octree.cpp: the balanced octree and its conforming tetrahedra
 // (volume_octree.hpp).
 #include "volume_octree.hpp"
 
 #include <utility>
 
-namespace qmotion::detail {
+namespace qmotion::sweep::mesher {
 
 Octree::Octree(const Eigen::Vector3d& origin, double root, const std::array<long, 3>& n)
     : origin_(origin), unit_(root / static_cast<double>(size(0))) {
@@ -152,4 +152,4 @@ void Octree::tets(OctKey c, std::vector<Tet>& out) const {
     }
 }
 
-}  // namespace qmotion::detail
+}  // namespace qmotion::sweep::mesher

@@ -1,4 +1,4 @@
-// api/src/volume_written.cpp: what is written is what was certified (docs/guide/volume.md,
+// sweep/src/volume_written.cpp: what is written is what was certified (docs/guide/volume.md,
 // "What is written is what was certified"): float32 rounding of a binary STL's vertices,
 // and the closedness of the mesh measured on the coordinates a reader of the file sees.
 #include <tbb/parallel_for.h>
@@ -13,7 +13,7 @@
 
 #include "volume_detail.hpp"
 
-namespace qmotion::detail {
+namespace qmotion::sweep::mesher {
 
 double float32_rounding(double largest) {
   return std::sqrt(3.0) * std::ldexp(largest, -24) * (1 + 1e-6);
@@ -85,4 +85,4 @@ bool closed_as_written(const std::vector<Eigen::Vector3d>& vertices,
   return closed;
 }
 
-}  // namespace qmotion::detail
+}  // namespace qmotion::sweep::mesher

@@ -1,4 +1,4 @@
-// api/src/volume_octree.hpp: the balanced octree of the adaptive enclosing mesh and its
+// sweep/src/volume_octree.hpp: the balanced octree of the adaptive enclosing mesh and its
 // conforming tetrahedra (docs/guide/volume.md, "The adaptive mesh").
 //
 // Cells are addressed by integers: a root cell is 2^15 units, a cell of level l is 2^(15-l),
@@ -19,7 +19,7 @@
 #include <utility>
 #include <vector>
 
-namespace qmotion::detail {
+namespace qmotion::sweep::mesher {
 
 using OctKey = std::uint64_t;
 using OctPoint = std::array<long, 3>;
@@ -115,4 +115,4 @@ class Octree {
   std::vector<OctKey> split_;
 };
 
-}  // namespace qmotion::detail
+}  // namespace qmotion::sweep::mesher

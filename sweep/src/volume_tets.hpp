@@ -1,4 +1,4 @@
-// api/src/volume_tets.hpp: what the adaptive mesh (volume_adaptive.cpp) does in one
+// sweep/src/volume_tets.hpp: what the adaptive mesh (volume_adaptive.cpp) does in one
 // tetrahedron of its octree: the surface's pieces, and the part certainly in V
 // (docs/geometry.md, "The adaptive mesh").
 #pragma once
@@ -13,7 +13,7 @@ namespace qmotion::sweep {
 class SweptVolumeTree;
 }
 
-namespace qmotion::detail {
+namespace qmotion::sweep::mesher {
 
 /// A vertex of the surface: the tetrahedra's edge it lies on, by its ends' keys (lower first).
 struct EdgeKey {
@@ -40,4 +40,4 @@ void march(const Octree::Tet& t, const OctKey* k, const double* v, double tau,
 double inside_part(const Eigen::Vector3d* p, const double* v, const double* at,
                    const sweep::SweptVolumeTree& tree, double scale);
 
-}  // namespace qmotion::detail
+}  // namespace qmotion::sweep::mesher

@@ -1,4 +1,4 @@
-// api/src/volume_mesh.cpp: qmotion::swept_volume, the certified enclosing mesh of `volume`
+// sweep/src/volume_mesh.cpp: qmotion::swept_volume, the certified enclosing mesh of `volume`
 // (docs/guide/volume.md; the constructions and their proofs are in docs/geometry.md, "Swept
 // volumes"). Every body takes the adaptive route (volume_adaptive.cpp), whose triangles
 // follow the surface.
@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
-#include <qmotion/api/volume.hpp>
 #include <qmotion/kernel/error.hpp>
 #include <qmotion/sweep/hull_pieces.hpp>
 #include <qmotion/sweep/swept_volume.hpp>
@@ -17,12 +16,12 @@
 
 #include "volume_detail.hpp"
 
-namespace qmotion {
+namespace qmotion::sweep {
 namespace {
 
 /// The smallest distance from x to the body placed at t in [t0, t1], by golden sections
 /// from the tree's best placement.
-double refined_distance(const sweep::SweptVolumeTree& tree, const Motion& m,
+double refined_distance(const sweep::SweptVolumeTree& tree, const qmotion::Motion& m,
                         const Eigen::Vector3d& x, const sweep::VolumeDistance& d) {
   double lo = std::max(m.a(), d.t0 - (d.t1 - d.t0)), hi = std::min(m.b(), d.t1 + (d.t1 - d.t0));
   const double g = 0.6180339887498949;
@@ -51,20 +50,7 @@ double refined_distance(const sweep::SweptVolumeTree& tree, const Motion& m,
 
 }  // namespace
 
-namespace detail {
-
-/// The bounding box of V, sampled: the body's triangulation at 64 times a segment.
-Eigen::AlignedBox3d sampled_box(const Motion& m, const sweep::Body& body) {
-  const auto mesh = sweep::triangulate(body, 1e-2 * sweep::radius(body));
-  Eigen::AlignedBox3d box;
-  const int n = 64 * std::max(1, m.segments());
-  for (int i = 0; i <= n; ++i) {
-    const Eigen::Matrix4d f = m.frame(m.a() + (m.b() - m.a()) * i / n);
-    for (const auto& v : mesh.vertices)
-      box.extend(Eigen::Vector3d(f.block<3, 1>(1, 0) + f.block<3, 3>(1, 1) * v));
-  }
-  return box;
-}
+namespace mesher {
 
 kernel::Interval enclosed_volume(const std::vector<Eigen::Vector3d>& vertices,
                                  const std::vector<std::array<int, 3>>& triangles,
@@ -82,7 +68,8 @@ kernel::Interval enclosed_volume(const std::vector<Eigen::Vector3d>& vertices,
   return v / kernel::Interval(6.0);
 }
 
-void refuse_float32(const Motion& motion, double e, double T, const VolumeRounding& rounding) {
+void refuse_float32(const qmotion::Motion& motion, double e, double T,
+                    const VolumeRounding& rounding) {
   throw Error(Errc::invalid_input, motion.label() +
                                        ": binary STL rounds the coordinates to float32, by up to " +
                                        kernel::detail::format_double(e * rounding.scale) +
@@ -91,7 +78,7 @@ void refuse_float32(const Motion& motion, double e, double T, const VolumeRoundi
                                        "; write .ply or .obj (double coordinates), or raise --tol");
 }
 
-void refuse_size(const Motion& motion, double T, std::size_t triangles) {
+void refuse_size(const qmotion::Motion& motion, double T, std::size_t triangles) {
   if (triangles > 10'000'000)
     throw Error(Errc::numerical_failure,
                 motion.label() + ": the enclosing mesh within the tolerance " +
@@ -99,20 +86,32 @@ void refuse_size(const Motion& motion, double T, std::size_t triangles) {
                     std::to_string(triangles) + "): raise --tol");
 }
 
-}  // namespace detail
+}  // namespace mesher
 
-SweptVolume swept_volume(const Motion& motion, const sweep::Body& body, std::optional<double> tol,
-                         const VolumeRounding& rounding) {
+Eigen::AlignedBox3d sampled_swept_box(const qmotion::Motion& m, const Body& body) {
+  const auto mesh = sweep::triangulate(body, 1e-2 * sweep::radius(body));
+  Eigen::AlignedBox3d box;
+  const int n = 64 * std::max(1, m.segments());
+  for (int i = 0; i <= n; ++i) {
+    const Eigen::Matrix4d f = m.frame(m.a() + (m.b() - m.a()) * i / n);
+    for (const auto& v : mesh.vertices)
+      box.extend(Eigen::Vector3d(f.block<3, 1>(1, 0) + f.block<3, 3>(1, 1) * v));
+  }
+  return box;
+}
+
+SweptVolume swept_volume(const qmotion::Motion& motion, const sweep::Body& body,
+                         std::optional<double> tol, const VolumeRounding& rounding) {
   sweep::validate(body);
   if (tol && (!(*tol > 0) || !std::isfinite(*tol)))
     throw Error(Errc::invalid_input, "volume: the tolerance must be a positive length, got " +
                                          kernel::detail::format_double(*tol));
   if (motion.is_rational()) sweep::refuse_poles(motion.rational());
   SweptVolume out;
-  const Eigen::AlignedBox3d sampled = detail::sampled_box(motion, body);
+  const Eigen::AlignedBox3d sampled = sampled_swept_box(motion, body);
   out.tolerance = tol ? *tol : 1e-3 * sampled.diagonal().norm();
   const double T = out.tolerance;
-  detail::refuse_octree(motion, sampled, T);
+  mesher::refuse_octree(motion, sampled, T);
   const sweep::SweptVolumeTree tree(
       motion, body, 0.1 * T, [](std::size_t n, const std::function<void(std::size_t)>& f) {
         tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) { f(i); });
@@ -120,7 +119,7 @@ SweptVolume swept_volume(const Motion& motion, const sweep::Body& body, std::opt
   out.time_pieces = tree.leaves();
   out.piece_delta = tree.largest_leaf_delta();
   const sweep::HullPieces hulls(motion, body, 0.05 * T);
-  detail::EnclosingMesh m = detail::adaptive_mesh(motion, tree, hulls, T, rounding);
+  mesher::EnclosingMesh m = mesher::adaptive_mesh(motion, tree, hulls, T, rounding);
   out.distance_bound = m.distance_bound;
   out.grid_step = m.smallest_cell;
   out.largest_cell = m.largest_cell;
@@ -147,7 +146,7 @@ SweptVolume swept_volume(const Motion& motion, const sweep::Body& body, std::opt
     Eigen::AlignedBox3d own;
     for (const auto& x : body.mesh.vertices) own.extend(x);
     lower = std::max(
-        lower, detail::enclosed_volume(body.mesh.vertices, body.mesh.triangles, own.center()).lo);
+        lower, mesher::enclosed_volume(body.mesh.vertices, body.mesh.triangles, own.center()).lo);
   }
   out.volume_lower = std::min(lower, out.volume_upper);
   out.vertices = std::move(m.vertices);
@@ -156,4 +155,4 @@ SweptVolume swept_volume(const Motion& motion, const sweep::Body& body, std::opt
   return out;
 }
 
-}  // namespace qmotion
+}  // namespace qmotion::sweep

@@ -1,4 +1,4 @@
-// api/src/volume_tets.cpp: what the adaptive mesh does in one tetrahedron (volume_tets.hpp).
+// sweep/src/volume_tets.cpp: what the adaptive mesh does in one tetrahedron (volume_tets.hpp).
 #include "volume_tets.hpp"
 
 #include <algorithm>
@@ -7,7 +7,7 @@
 #include <qmotion/kernel/outward.hpp>
 #include <qmotion/sweep/swept_volume.hpp>
 
-namespace qmotion::detail {
+namespace qmotion::sweep::mesher {
 namespace {
 
 /// inside_part's two tests of the whole tetrahedron p (all corners inside; `centre`, its
@@ -125,4 +125,4 @@ double inside_part(const Eigen::Vector3d* p, const double* v, const double* at,
   return kernel::down(whole * part);
 }
 
-}  // namespace qmotion::detail
+}  // namespace qmotion::sweep::mesher

@@ -1,9 +1,9 @@
-// Marching tetrahedra as the adaptive mesh does it (api/src/volume_tets.hpp): over a
+// Marching tetrahedra as the adaptive mesh does it (sweep/src/volume_tets.hpp): over a
 // balanced octree with cells of three sizes, the triangles form a closed surface that winds
 // once about every corner below the level and never about one above it, wherever on its
 // edge each vertex lies (docs/geometry.md, "The adaptive mesh"). And the mesh's volume,
 // rounded outward (volume_detail.hpp).
-#include "../../api/src/volume_tets.hpp"
+#include "../../sweep/src/volume_tets.hpp"
 
 #include <gtest/gtest.h>
 
@@ -15,16 +15,16 @@
 #include <unordered_map>
 #include <vector>
 
-#include "../../api/src/volume_detail.hpp"
-#include "../../api/src/volume_octree.hpp"
+#include "../../sweep/src/volume_detail.hpp"
+#include "../../sweep/src/volume_octree.hpp"
 
 namespace {
 
-using qmotion::detail::EdgeHash;
-using qmotion::detail::EdgeKey;
-using qmotion::detail::OctKey;
-using qmotion::detail::Octree;
-using qmotion::detail::Tri;
+using qmotion::sweep::mesher::EdgeHash;
+using qmotion::sweep::mesher::EdgeKey;
+using qmotion::sweep::mesher::OctKey;
+using qmotion::sweep::mesher::Octree;
+using qmotion::sweep::mesher::Tri;
 
 /// The winding number of the closed triangle surface about x: the triangles' solid angles
 /// (Van Oosterom and Strackee) over 4 pi.
@@ -77,7 +77,7 @@ TEST(March, ClosedAndOutwardWhereverTheVerticesLieOnTheirEdges) {
           v[i] = phi(k[i]);
           corners.insert(k[i]);
         }
-        qmotion::detail::march(t, k, v, 0.0, tris);
+        qmotion::sweep::mesher::march(t, k, v, 0.0, tris);
       }
     }
     ASSERT_GT(tris.size(), 100u);
@@ -131,7 +131,7 @@ TEST(EnclosedVolume, HoldsTheExactVolumeWhereAFixedMarginWouldNot) {
   const std::vector<std::array<int, 3>> faces = {{0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5},
                                                  {0, 1, 5}, {0, 5, 4}, {2, 6, 7}, {2, 7, 3},
                                                  {0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}};
-  const auto far = qmotion::detail::enclosed_volume(v, faces, Eigen::Vector3d::Zero());
+  const auto far = qmotion::sweep::mesher::enclosed_volume(v, faces, Eigen::Vector3d::Zero());
   EXPECT_LE(far.lo, exact);
   EXPECT_GE(far.hi, exact);
   double plain = 0;
@@ -139,7 +139,7 @@ TEST(EnclosedVolume, HoldsTheExactVolumeWhereAFixedMarginWouldNot) {
   plain /= 6;
   EXPECT_GT(std::abs(plain - exact), 1e-9 * exact);  // a margin of 1e-9 would not hold it
   const auto near =
-      qmotion::detail::enclosed_volume(v, faces, Eigen::Vector3d::Constant(o + h / 2));
+      qmotion::sweep::mesher::enclosed_volume(v, faces, Eigen::Vector3d::Constant(o + h / 2));
   EXPECT_LE(near.lo, exact);
   EXPECT_GE(near.hi, exact);
   EXPECT_LT(near.hi - near.lo, 1e-12 * exact);
