@@ -1,5 +1,6 @@
 // tests/kernel/qspline_bounds_test.cpp mirrors kernel/qspline_bounds.hpp
 #include <cmath>
+#include <qmotion/kernel/outward.hpp>
 #include <qmotion/kernel/qspline.hpp>
 #include <qmotion/kernel/qspline_bounds.hpp>
 #include <random>
@@ -50,6 +51,69 @@ TEST(QSplineBounds, SecondDerivativesStayWithinTheBounds) {
       if (len < 0.1 && rot > 0) worst_ratio = std::max(worst_ratio, b.rotation / rot);
     }
     EXPECT_LT(worst_ratio, 10) << "the rotation bound is loose";
+  }
+}
+
+// The coefficients on [x0, x1] hold the exact ones, in every case where de Casteljau's steps
+// in plain doubles fall below them too. Coefficients of 36 significant bits and parameters
+// of 16 make every blossom exact in binary128 (at most 100 bits a term, 111 a sum), while
+// doubles round from the second step on.
+TEST(QSplineBounds, RestrictedCoefficientsHoldTheExactOnes) {
+  __extension__ typedef __float128 Q;
+  std::mt19937_64 g(5);
+  std::uniform_int_distribution<long long> mant(1LL << 35, (1LL << 36) - 1);
+  std::uniform_int_distribution<int> sign(0, 1), exponent(-4, 3), where(0, 1 << 16);
+  int understated = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    std::array<kernel::Interval, 5> b;
+    std::array<Q, 5> exact_b;
+    std::array<double, 5> plain_b;
+    for (std::size_t i = 0; i < 5; ++i) {
+      const double x =
+          (sign(g) ? -1.0 : 1.0) * std::ldexp(static_cast<double>(mant(g)), exponent(g) - 35);
+      b[i] = kernel::Interval(x);
+      exact_b[i] = x;
+      plain_b[i] = x;
+    }
+    double x0 = std::ldexp(where(g), -16), x1 = std::ldexp(where(g), -16);
+    if (x0 > x1) std::swap(x0, x1);
+    const auto r = kernel::detail::restrict_to(b, x0, x1);
+    for (std::size_t i = 0; i < 5; ++i) {
+      std::array<Q, 5> w = exact_b;
+      std::array<double, 5> p = plain_b;
+      for (std::size_t level = 1; level < 5; ++level) {
+        const double x = level <= i ? x1 : x0;
+        for (std::size_t k = 0; k + level < 5; ++k) {
+          w[k] = (1 - Q(x)) * w[k] + Q(x) * w[k + 1];
+          p[k] = (1 - x) * p[k] + x * p[k + 1];
+        }
+      }
+      ASSERT_TRUE(Q(r[i].lo) <= w[0] && w[0] <= Q(r[i].hi)) << "trial " << trial << ", " << i;
+      if (Q(p[0]) < w[0]) ++understated;
+    }
+  }
+  EXPECT_GT(understated, 1000) << "rounding to nearest never fell below the exact coefficient";
+}
+
+// At a knot, and within rounding of one, the bound covers both neighbouring segments and
+// stays finite.
+TEST(QSplineBounds, AnIntervalAtAKnotTakesBothSegments) {
+  for (auto scheme : {kernel::QSplineScheme::kks, kernel::QSplineScheme::quintic,
+                      kernel::QSplineScheme::quartic}) {
+    const QuaternionSpline s = six_key_spline(scheme);
+    SCOPED_TRACE(kernel::to_string(s.scheme));
+    const double knot = s.scheme == kernel::QSplineScheme::quintic
+                            ? s.knots[2]
+                            : s.a() + (s.b() - s.a()) * 2 / s.segments();
+    const auto at = kernel::second_derivative_bound(s, knot, knot);
+    const auto left = kernel::segment_second_derivative_bound(s, 1, 1, 1);
+    const auto right = kernel::segment_second_derivative_bound(s, 2, 0, 0);
+    EXPECT_TRUE(std::isfinite(at.position) && std::isfinite(at.rotation));
+    EXPECT_GE(at.position, std::max(left.position, right.position));
+    EXPECT_GE(at.rotation, std::max(left.rotation, right.rotation));
+    const auto near = kernel::second_derivative_bound(s, std::nextafter(knot, s.b()),
+                                                      std::nextafter(knot, s.b()));
+    EXPECT_GE(near.position, left.position);
   }
 }
 
