@@ -54,6 +54,7 @@
 #include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Compound.hxx>
 #include <TopoDS_Edge.hxx>
@@ -333,6 +334,12 @@ std::vector<sweep::NurbsCurve<double>> profile_edges(const TopoDS_Shape& shape) 
     chain.push_back(std::move(c));
   }
   return chain;
+}
+
+int distinct(const TopoDS_Shape& shape, TopAbs_ShapeEnum kind) {
+  TopTools_IndexedMapOfShape m;
+  TopExp::MapShapes(shape, kind, m);
+  return m.Extent();
 }
 
 }  // namespace qmotion::io::detail

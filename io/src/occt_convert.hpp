@@ -54,6 +54,12 @@ OcctKnots occt_knots(const std::vector<double>& full);
 Handle(Geom_BSplineSurface) make_surface(const sweep::NurbsSurface<double>& s);
 Handle(Geom_BSplineCurve) make_curve(const sweep::NurbsCurve<double>& c);
 
+/// The faces as one open shell whose neighbours share an edge wherever their boundary
+/// curves are the same data, bit for bit, on opposite sides (occt_shell.cpp): a surface cut
+/// at its knots. A null shape when that does not join them (a degenerate side, a boundary
+/// shared otherwise, borders that meet end to end without being equal): sewing's case.
+TopoDS_Shape shared_edge_shell(const std::vector<sweep::NurbsSurface<double>>& faces);
+
 /// OpenCASCADE's B-spline surface and curve as qmotion's NURBS (full knot vectors).
 sweep::NurbsSurface<double> from_occt(Handle(Geom_BSplineSurface) g);
 sweep::NurbsCurve<double> from_occt(Handle(Geom_BSplineCurve) g);
@@ -64,6 +70,9 @@ sweep::NurbsCurve<double> from_occt(Handle(Geom_BSplineCurve) g);
 /// cannot be read. Runs OpenCASCADE's parser: call it in a child process (isolated.hpp).
 TopoDS_Shape read_shape(const std::string& path, const std::string& ext, const UnitNames& u,
                         bool prechecks, std::string& file_units);
+
+/// How many distinct subshapes of the kind the shape has (a shared edge counts once).
+int distinct(const TopoDS_Shape& shape, TopAbs_ShapeEnum kind);
 
 /// Every edge of the shape but degenerate ones bounds exactly two faces (a closed shell).
 bool closed_shape(const TopoDS_Shape& shape);

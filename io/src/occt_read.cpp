@@ -303,10 +303,8 @@ CadGeometry read_cad_here(const std::string& path, bool want_surface, const std:
     shape = read_shape(path, ext, u, prechecks, g.file_units);
     if (shape.IsNull()) throw Error(Errc::invalid_input, path + ": the file holds no geometry");
     g.valid = BRepCheck_Analyzer(shape).IsValid();
-    for (TopExp_Explorer e(shape, TopAbs_FACE); e.More(); e.Next()) ++g.faces;
-    for (TopExp_Explorer e(shape, TopAbs_EDGE); e.More(); e.Next()) ++g.edges;
-    for (TopExp_Explorer e(shape, TopAbs_SHELL); e.More(); e.Next()) ++g.shells;
-    for (TopExp_Explorer e(shape, TopAbs_SOLID); e.More(); e.Next()) ++g.solids;
+    g.faces = distinct(shape, TopAbs_FACE), g.edges = distinct(shape, TopAbs_EDGE);
+    g.shells = distinct(shape, TopAbs_SHELL), g.solids = distinct(shape, TopAbs_SOLID);
     g.closed = closed_shape(shape);
     if (g.solids > 0) {
       GProp_GProps props;

@@ -209,6 +209,10 @@ TopoDS_Shape make_shell(const sweep::NurbsShell<double>& s, const std::string& p
   if (s.faces.size() == 1 && s.cap_start.empty()) {
     return BRepBuilderAPI_MakeFace(make_surface(s.faces.front()), 1e-9).Face();
   }
+  if (s.cap_start.empty() && !s.closed) {  // an open shell: its shared edges by equality
+    const TopoDS_Shape direct = shared_edge_shell(s.faces);
+    if (!direct.IsNull()) return direct;
+  }
   // Neighbouring faces share their boundary poles exactly; the tolerance only absorbs
   // OpenCASCADE's own rounding of the boundary curves.
   BRepBuilderAPI_Sewing sewing(std::max(1e-7, 1e-9 * sweep::diagonal(s)));

@@ -48,6 +48,14 @@ PEERS = [
      "uniform keys that hold the same certificate (the tables below give both key counts)"),
     ("BM_WriteTrajectoryJson", "BM_OfstreamSameTrajectoryBytes",
      "writing a trajectory: qmotion vs an ofstream writing the same bytes"),
+    ("BM_CircleSweep2000/1/1", "BM_Peer_OcctWriteCircleSweep2000/1",
+     "a 2000-pose circle sweep to STEP: qmotion (build, default self-intersection check, "
+     "write) vs OpenCASCADE's writer alone on the same shell of C1 faces, sewn"),
+    ("BM_CircleSweep2000/1/0", "BM_Peer_OcctWriteCircleSweep2000/1",
+     "the same without qmotion's check, vs the same shell"),
+    ("BM_CircleSweep2000/1/1", "BM_Peer_OcctWriteCircleSweep2000/0",
+     "the same sweep to STEP vs OpenCASCADE's writer alone on the surface as one face, C0 "
+     "across the circle's arcs (its fewest bytes)"),
 ]
 
 

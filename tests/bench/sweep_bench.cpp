@@ -18,13 +18,25 @@
 #include <qmotion/kernel/interpolation.hpp>
 #include <qmotion/kernel/parametrization.hpp>
 #include <qmotion/sweep/self_intersection.hpp>
+#include <qmotion/sweep/shell.hpp>
 #include <qmotion/sweep/surface.hpp>
 
 // OpenCASCADE after CGAL: its `Handle` macro breaks CGAL headers included after it.
 // clang-format off
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_Sewing.hxx>
 #include <GeomAPI_PointsToBSplineSurface.hxx>
 #include <GeomAPI_ProjectPointOnSurf.hxx>
+#include <Message.hxx>
+#include <Message_Messenger.hxx>
+#include <Message_PrinterOStream.hxx>
+#include <STEPControl_Writer.hxx>
+#include <StepData_Protocol.hxx>
+#include <StepData_StepWriter.hxx>
 #include <TColgp_Array2OfPnt.hxx>
+#include <TopoDS_Face.hxx>
+#include <TopoDS_Shape.hxx>
+#include <XSControl_WorkSession.hxx>
 
 #include "occt_convert.hpp"
 // clang-format on
@@ -284,6 +296,47 @@ void BM_CircleSweep2000SelfIntersectionCheck(benchmark::State& st) {
   st.counters["crossing_pairs"] = static_cast<double>(si.pairs);
 }
 BENCHMARK(BM_CircleSweep2000SelfIntersectionCheck)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+/// Peer: OpenCASCADE's STEP writer alone on that sweep's surface (built by the library and
+/// handed over as geometry), printing 17 significant digits as qmotion does. st.range(0): 0,
+/// the surface as one face, C0 across the circle's four arcs (OpenCASCADE's fewest bytes); 1,
+/// the shell qmotion writes, one C1 face between C0 knots, sewn as qmotion sews it.
+void BM_Peer_OcctWriteCircleSweep2000(benchmark::State& st) {
+  Message::DefaultMessenger()->RemovePrinters(STANDARD_TYPE(Message_PrinterOStream));
+  const auto surfaces = sweep_nurbs(helix_2000(), io::read_profile("circle:5"), ExportOptions{});
+  sweep::NurbsShell<double> shell;
+  shell.faces = st.range(0) ? sweep::split_c0(surfaces.front()) : surfaces;
+  std::vector<Handle(Geom_BSplineSurface)> faces;
+  for (const auto& f : shell.faces) faces.push_back(bench::to_occt(f));
+  const std::string path = (fs::temp_directory_path() / "bench_circle_occt.step").string();
+  for (auto _ : st) {
+    TopoDS_Shape shape;
+    if (faces.size() == 1) {
+      shape = BRepBuilderAPI_MakeFace(faces.front(), 1e-9).Face();
+    } else {
+      BRepBuilderAPI_Sewing sewing(std::max(1e-7, 1e-9 * sweep::diagonal(shell)));
+      for (const auto& f : faces) sewing.Add(BRepBuilderAPI_MakeFace(f, 1e-9).Face());
+      sewing.Perform();
+      shape = sewing.SewedShape();
+    }
+    STEPControl_Writer w;
+    if (w.Transfer(shape, STEPControl_AsIs) != IFSelect_RetDone) st.SkipWithError("transfer");
+    StepData_StepWriter sw(w.Model());
+    sw.FloatWriter().SetFormat("%.17E");
+    sw.SendModel(Handle(StepData_Protocol)::DownCast(w.WS()->Protocol()));
+    std::ofstream f(path, std::ios::binary);
+    if (!sw.Print(f)) st.SkipWithError("print");
+  }
+  st.counters["faces"] = static_cast<double>(faces.size());
+  st.counters["file_MB"] = static_cast<double>(fs::file_size(path)) / 1e6;
+  fs::remove(path);
+  st.SetLabel(st.range(0) ? "the same shell of C1 faces, sewn" : "one C0 face");
+}
+BENCHMARK(BM_Peer_OcctWriteCircleSweep2000)
+    ->Arg(0)
+    ->Arg(1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace
 

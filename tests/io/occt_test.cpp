@@ -1,11 +1,13 @@
 // tests/io/occt_test.cpp mirrors io/occt.hpp: STEP/IGES written and read back through
 // OpenCASCADE, bit for bit.
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <qmotion/io/json_number.hpp>
 #include <qmotion/io/occt.hpp>
 #include <qmotion/io/profiles.hpp>
 #include <qmotion/sweep/profiles.hpp>
+#include <qmotion/sweep/shell.hpp>
 #include <qmotion/sweep/surface.hpp>
 #include <random>
 
@@ -77,6 +79,67 @@ TEST(OcctRoundTrip, SurfacesAndCurvesComeBackBitForBit) {
       const double u = c.knots.front() + t * (c.knots.back() - c.knots.front());
       EXPECT_LE((gc.value(u, 0) - sweep::evaluate(c, u)).norm(), 1e-12) << u;
       EXPECT_LE((gs.value(t, 1 - t) - sweep::evaluate(s, t, 1 - t)).norm(), 1e-12) << t;
+    }
+  }
+}
+
+/// A cylinder of radius 2 and height 5: lines along u, the nine-pole rational circle along
+/// v, C0 at its four quarter knots.
+sweep::NurbsSurface<double> cylinder() {
+  const double r = 2, h = std::sqrt(0.5);
+  const double xy[9][2] = {{r, 0},   {r, r},  {0, r},  {-r, r}, {-r, 0},
+                           {-r, -r}, {0, -r}, {r, -r}, {r, 0}};
+  sweep::NurbsSurface<double> s;
+  s.degree_u = 1;
+  s.degree_v = 2;
+  s.knots_u = {0, 0, 1, 1};
+  s.knots_v = {0, 0, 0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1, 1, 1};
+  for (const double z : {0.0, 5.0}) {
+    s.points.emplace_back();
+    s.weights.emplace_back();
+    for (int j = 0; j < 9; ++j) {
+      s.points.back().emplace_back(xy[j][0], xy[j][1], z);
+      s.weights.back().push_back(j % 2 ? h : 1.0);
+    }
+  }
+  return s;
+}
+
+// Pieces of one surface cut at its C0 knots share their boundary poles bit for bit: the
+// shell is built with those edges shared (no sewing), and reads back as one valid shell
+// with each inner edge once. Where a shared boundary differs by one unit in the last place,
+// sewing joins them as before.
+TEST(OcctShells, PiecesOfOneSurfaceShareTheirEdges) {
+  for (const bool nudged : {false, true}) {
+    SCOPED_TRACE(nudged ? "one pole nudged: sewn" : "exact: shared");
+    sweep::NurbsShell<double> shell;
+    shell.faces = sweep::split_c0(cylinder());
+    ASSERT_EQ(shell.faces.size(), 4U);
+    if (nudged) {  // the second face's start row, the first face's end row, one ulp apart
+      auto& p = shell.faces[1].points[1][0];
+      p.x() = std::nextafter(p.x(), 10.0);
+    }
+    for (const std::string ext : {".step", ".igs"}) {
+      SCOPED_TRACE(ext);
+      const auto path = scratch_path("occt_shell", "cylinder" + ext).string();
+      if (ext == ".step")
+        io::write_step(path, shell, {});
+      else
+        io::write_iges(path, shell, {});
+      const auto g = io::read_cad(path, true);
+      EXPECT_TRUE(g.valid);
+      EXPECT_EQ(g.shells, 1);
+      EXPECT_EQ(g.faces, 4);
+      EXPECT_EQ(g.edges, 12);  // four lines, each between two faces, and eight quarter arcs
+      EXPECT_FALSE(g.closed);
+      ASSERT_EQ(g.face_list.size(), 4U);
+      for (const auto& written : shell.faces)  // each face's own data, bit for bit
+        EXPECT_EQ(std::count_if(g.face_list.begin(), g.face_list.end(),
+                                [&](const io::CadFace& read) {
+                                  return read.surface.points == written.points &&
+                                         read.surface.weights == written.weights;
+                                }),
+                  1);
     }
   }
 }

@@ -100,7 +100,8 @@ struct CadGeometry {
   std::vector<CadFace> face_list;  ///< every face (is_surface)
   /// Evaluation by OpenCASCADE itself (Geom_BSplineSurface/Curve::Value): (u, v) or (t, -).
   std::function<Eigen::Vector3d(double, double)> value;
-  int faces = 0, edges = 0, solids = 0, shells = 0;
+  int faces = 0, solids = 0, shells = 0;
+  int edges = 0;           ///< distinct edges (one shared by two faces counts once)
   bool valid = false;      ///< BRepCheck_Analyzer on the whole shape
   bool closed = false;     ///< every edge of the shape bounds two faces (a closed shell)
   double volume = 0;       ///< of the solids, by BRepGProp's adaptive integration (1e-9)
