@@ -14,7 +14,13 @@
 #include <TColStd_Array2OfReal.hxx>
 #include <TColgp_Array1OfPnt.hxx>
 #include <TColgp_Array2OfPnt.hxx>
+#include <STEPControl_Writer.hxx>
+#include <StepData_Protocol.hxx>
+#include <StepData_StepWriter.hxx>
+#include <XSControl_WorkSession.hxx>
 // clang-format on
+#include <fstream>
+#include <string>
 
 namespace qmotion::bench {
 
@@ -60,6 +66,16 @@ inline Handle(Geom_BSplineSurface) to_occt(const sweep::NurbsSurface<double>& s)
     }
   const OcctKnots U(s.knots_u), V(s.knots_v);
   return new Geom_BSplineSurface(P, W, U.knots, V.knots, U.mults, V.mults, s.degree_u, s.degree_v);
+}
+
+/// Prints the writer's model as STEPControl_Writer::Write does (StepData_StepWriter) but with
+/// the 17 significant digits io::write_step writes ("%.17E"): OpenCASCADE alone, our numbers.
+inline bool print_step17(STEPControl_Writer& w, const std::string& path) {
+  StepData_StepWriter sw(w.Model());
+  sw.FloatWriter().SetFormat("%.17E");
+  sw.SendModel(Handle(StepData_Protocol)::DownCast(w.WS()->Protocol()));
+  std::ofstream f(path, std::ios::binary);
+  return f && sw.Print(f);
 }
 
 }  // namespace qmotion::bench

@@ -168,11 +168,7 @@ double occt_write_step(const TopoDS_Shape& shape, const std::string& path, bool 
     if (w.Write(path.c_str()) != IFSelect_RetDone) throw std::runtime_error("STEP writer failed");
     return ms_since(t0);
   }
-  StepData_StepWriter sw(w.Model());
-  sw.FloatWriter().SetFormat("%.17E");
-  sw.SendModel(Handle(StepData_Protocol)::DownCast(w.WS()->Protocol()));
-  std::ofstream f(path, std::ios::binary);
-  if (!f || !sw.Print(f)) throw std::runtime_error("STEP writer failed");
+  if (!bench::print_step17(w, path)) throw std::runtime_error("STEP writer failed");
   return ms_since(t0);
 }
 

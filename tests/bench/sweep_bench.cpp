@@ -30,13 +30,9 @@
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
 #include <Message_PrinterOStream.hxx>
-#include <STEPControl_Writer.hxx>
-#include <StepData_Protocol.hxx>
-#include <StepData_StepWriter.hxx>
 #include <TColgp_Array2OfPnt.hxx>
 #include <TopoDS_Face.hxx>
 #include <TopoDS_Shape.hxx>
-#include <XSControl_WorkSession.hxx>
 
 #include "occt_convert.hpp"
 // clang-format on
@@ -321,11 +317,7 @@ void BM_Peer_OcctWriteCircleSweep2000(benchmark::State& st) {
     }
     STEPControl_Writer w;
     if (w.Transfer(shape, STEPControl_AsIs) != IFSelect_RetDone) st.SkipWithError("transfer");
-    StepData_StepWriter sw(w.Model());
-    sw.FloatWriter().SetFormat("%.17E");
-    sw.SendModel(Handle(StepData_Protocol)::DownCast(w.WS()->Protocol()));
-    std::ofstream f(path, std::ios::binary);
-    if (!sw.Print(f)) st.SkipWithError("print");
+    if (!bench::print_step17(w, path)) st.SkipWithError("print");
   }
   st.counters["faces"] = static_cast<double>(faces.size());
   st.counters["file_MB"] = static_cast<double>(fs::file_size(path)) / 1e6;
